@@ -1,0 +1,13 @@
+"""Benchmarks that print figures (`h3ds bench WHAT`)."""
+
+from __future__ import annotations
+
+
+def run_benchmark(what: str, args) -> int:
+    if what == "parser":
+        from app.bench.parser import main
+    elif what == "generate":
+        from app.bench.generate import main
+    else:
+        raise ValueError(f"unknown benchmark {what!r}")
+    return main(args)

@@ -1,0 +1,190 @@
+"""`h3ds`: the command line of interfaces.md, a thin shell over app.pipeline.
+
+Bad input never shows a traceback: it exits with status 2 and one line on stderr naming the problem.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from pathlib import Path
+
+from pydantic import ValidationError
+
+from models.language import InstructionError
+from models.placement import UnknownSolver
+from models.world import ROOM_TYPES, UnknownRoomType
+
+EXAMPLES = """examples:
+  h3ds parse "Put a chilled bread on the counter" --room-type kitchen
+  h3ds generate "Put a chilled bread on the counter" --room-type kitchen --out out/bread
+  h3ds place out/bread/plan.json --solver dfs --seed 3 --out layout.json
+"""
+
+
+class BadInput(Exception):
+    """Input the user can fix; shown as one line, exit status 2."""
+
+
+class Parser(argparse.ArgumentParser):
+    def error(self, message: str):  # one line instead of argparse's usage block
+        raise BadInput(message)
+
+
+def _plan_error(path: str, err: Exception) -> BadInput:
+    if isinstance(err, ValidationError):
+        first = err.errors()[0]
+        where = ".".join(str(p) for p in first["loc"]) or "plan"
+        return BadInput(f"{path}: {where}: {first['msg']}")
+    return BadInput(f"{path}: {err}")
+
+
+def load_plan(path: str):
+    from models.values import ConstraintPlan
+    try:
+        raw = Path(path).read_bytes()
+    except OSError as e:
+        raise BadInput(f"{path}: cannot read the plan ({e.strerror})") from e
+    try:
+        data = json.loads(raw.decode("utf-8"))
+    except (UnicodeDecodeError, json.JSONDecodeError) as e:
+        raise BadInput(f"{path}: not valid JSON ({e})") from e
+    if not isinstance(data, dict):
+        raise BadInput(f"{path}: a plan must be a JSON object, not {type(data).__name__}")
+    try:
+        return ConstraintPlan.model_validate(data)
+    except ValidationError as e:
+        raise _plan_error(path, e) from e
+
+
+def cmd_parse(args) -> int:
+    from app.pipeline import Pipeline, dump
+    pipeline = Pipeline()
+    if args.batch:
+        out = open(args.out, "w") if args.out else sys.stdout
+        try:
+            for n, line in enumerate(Path(args.batch).read_text().splitlines(), start=1):
+                if not line.strip():
+                    continue
+                try:
+                    item = json.loads(line)
+                    graph = pipeline.parse(item["instruction"], item.get("room_type"))
+                    row = {"id": item.get("id"), **json.loads(dump(graph))}
+                except (json.JSONDecodeError, KeyError, TypeError, InstructionError, UnknownRoomType) as e:
+                    row = {"id": item.get("id") if isinstance(item, dict) else None, "error": f"line {n}: {e}"}
+                out.write(json.dumps(row) + "\n")
+        finally:
+            if args.out:
+                out.close()
+        return 0
+    if args.instruction is None:
+        raise BadInput("give an INSTRUCTION or --batch IN.jsonl")
+    print(dump(pipeline.parse(args.instruction, args.room_type)))
+    return 0
+
+
+def cmd_place(args) -> int:
+    from app.pipeline import Pipeline, dump
+    pipeline = Pipeline()
+    plans = [load_plan(p) for p in args.plans]
+    if len(plans) > 1 and not args.out_dir:
+        raise BadInput("several plans need --out-dir DIR")
+    for plan in plans:
+        layout = pipeline.place(plan, seed=args.seed, solver=args.solver)
+        if args.out_dir:
+            Path(args.out_dir).mkdir(parents=True, exist_ok=True)
+            (Path(args.out_dir) / f"{plan.id}.json").write_text(dump(layout) + "\n")
+        elif args.out:
+            Path(args.out).write_text(dump(layout) + "\n")
+        else:
+            print(dump(layout))
+    return 0
+
+
+def cmd_generate(args) -> int:
+    from app.pipeline import Pipeline, write_generation
+    gen = Pipeline().generate(args.instruction, args.room_type, seed=args.seed, solver=args.solver)
+    paths = write_generation(gen, Path(args.out))
+    for p in paths:
+        print(p)
+    if gen.scene.unplaced:
+        print(f"note: {len(gen.scene.unplaced)} object(s) could not be placed; see layout.json", file=sys.stderr)
+    return 0
+
+
+def cmd_demo(args) -> int:
+    from app.pipeline import Pipeline, write_generation
+    out = Path(args.out)
+    gen = Pipeline().generate("Put a chilled bread on the counter", "kitchen", seed=0)
+    write_generation(gen, out)
+    print(f"Demo scene for 'Put a chilled bread on the counter' written to {out.resolve()}/")
+    print(f"  open {out / 'scene.glb'} in Blender or https-free three.js viewers; "
+          f"load {out / 'house.json'} with AI2-THOR's Controller(scene=house)")
+    return 0
+
+
+def cmd_bench(args) -> int:
+    from app.bench import run_benchmark
+    return run_benchmark(args.what, args)
+
+
+def build_parser() -> argparse.ArgumentParser:
+    room_help = f"one of: {', '.join(ROOM_TYPES)} (any case; living_room works too)"
+    ap = Parser(prog="h3ds", description="Turn a household instruction into an AI2-THOR scene for a robot and a "
+                "VR user.", epilog=EXAMPLES, formatter_class=argparse.RawDescriptionHelpFormatter)
+    sub = ap.add_subparsers(dest="command", required=True, parser_class=Parser)
+
+    p = sub.add_parser("parse", help="instruction -> task scene graph (JSON on stdout)")
+    p.add_argument("instruction", nargs="?", help='e.g. "Put a chilled bread on the counter"')
+    p.add_argument("--room-type", help=f"the room the task happens in; inferred when left out ({room_help})")
+    p.add_argument("--json", action="store_true", help="JSON output (the default; kept for scripts)")
+    p.add_argument("--batch", metavar="IN.jsonl", help='many instructions, one {"id", "instruction", '
+                   '"room_type"?} per line')
+    p.add_argument("--out", metavar="OUT.jsonl", help="with --batch: write here instead of stdout")
+    p.set_defaults(run=cmd_parse)
+
+    p = sub.add_parser("place", help="place the objects of constraint plan(s) -> layout JSON")
+    p.add_argument("plans", nargs="+", metavar="PLAN.json")
+    p.add_argument("--solver", default=None, help="placer: dfs (default); milp, z3 and plan2place as they land")
+    p.add_argument("--seed", type=int, default=0)
+    p.add_argument("--out", metavar="LAYOUT.json", help="write the layout here instead of stdout")
+    p.add_argument("--out-dir", metavar="DIR", help="for several plans: DIR/<plan id>.json each")
+    p.set_defaults(run=cmd_place)
+
+    p = sub.add_parser("generate", help="the whole pipeline -> task_graph, plan, layout, house JSON and GLB")
+    p.add_argument("instruction")
+    p.add_argument("--room-type", required=True, help=room_help)
+    p.add_argument("--seed", type=int, default=0, help="same seed, same scene")
+    p.add_argument("--solver", default=None)
+    p.add_argument("--out", required=True, metavar="DIR")
+    p.set_defaults(run=cmd_generate)
+
+    p = sub.add_parser("demo", help="generate the demo scene (what `make run` does until the studio lands)")
+    p.add_argument("--out", default="out/demo", metavar="DIR")
+    p.set_defaults(run=cmd_demo)
+
+    p = sub.add_parser("bench", help="benchmarks that print figures: parser accuracy, generate speed")
+    p.add_argument("what", choices=["parser", "generate"])
+    p.add_argument("--n", type=int, default=30, help="instructions to time (generate)")
+    p.add_argument("--split", default="valid_unseen", help="ALFRED split to score (parser)")
+    p.set_defaults(run=cmd_bench)
+    return ap
+
+
+def main(argv: list[str] | None = None) -> int:
+    try:
+        args = build_parser().parse_args(argv)
+        return args.run(args)
+    except (BadInput, InstructionError, UnknownRoomType, UnknownSolver) as e:
+        print(f"h3ds: error: {e}", file=sys.stderr)
+        return 2
+    except ValidationError as e:
+        print(f"h3ds: error: {_plan_error('input', e)}", file=sys.stderr)
+        return 2
+    except BrokenPipeError:
+        return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,84 @@
+"""The whole pipeline, as one object the CLI, the API and the studio all drive.
+
+instruction -> TaskGraph -> RoomPlan -> ConstraintPlan -> Layout -> Scene -> exports
+
+Every stage is replaceable (pass another parser, planner, writer or solver name); every stage's output
+is a typed value, so any of them can be saved, edited and fed back in.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass
+from pathlib import Path
+
+from models.exports.glb import to_glb
+from models.exports.procthor_house import to_house
+from models.language import InstructionParser, RuleParser
+from models.placement import StepObserver, get_solver
+from models.planning import ConstraintWriter, RoomPlanner
+from models.scene import assemble_scene
+from models.values import ConstraintPlan, Layout, RoomPlan, Scene, TaskGraph
+from models.world import normalise_room_type
+
+
+@dataclass(frozen=True)
+class Generation:
+    """Every stage's value for one instruction."""
+
+    task_graph: TaskGraph
+    room_plan: RoomPlan
+    plan: ConstraintPlan
+    layout: Layout
+    scene: Scene
+
+
+class Pipeline:
+    def __init__(self, parser: InstructionParser | None = None, planner: RoomPlanner | None = None,
+                 writer: ConstraintWriter | None = None, solver: str | None = None):
+        self.parser = parser or RuleParser()
+        self.planner = planner or RoomPlanner()
+        self.writer = writer or ConstraintWriter()
+        self.solver = solver
+
+    def parse(self, instruction: str, room_type: str | None = None) -> TaskGraph:
+        return self.parser.parse(instruction, room_type)
+
+    def place(self, plan: ConstraintPlan, seed: int = 0, solver: str | None = None,
+              observer: StepObserver | None = None) -> Layout:
+        return get_solver(solver or self.solver).solve(plan, seed=seed, observer=observer)
+
+    def generate(self, instruction: str, room_type: str, seed: int = 0, solver: str | None = None,
+                 observer: StepObserver | None = None) -> Generation:
+        graph = self.parse(instruction, normalise_room_type(room_type))
+        return self.generate_from_graph(graph, seed, solver, observer)
+
+    def generate_from_graph(self, graph: TaskGraph, seed: int = 0, solver: str | None = None,
+                            observer: StepObserver | None = None) -> Generation:
+        room_plan = self.planner.plan(graph, seed=seed, plan_id=f"scene-{seed}")
+        plan = self.writer.write(room_plan)
+        layout = self.place(plan, seed, solver, observer)
+        scene = assemble_scene(room_plan, layout, graph, seed)
+        return Generation(graph, room_plan, plan, layout, scene)
+
+
+OUTPUT_FILES = ("task_graph.json", "plan.json", "layout.json", "house.json", "scene.glb")
+
+
+def dump(value) -> str:
+    """A value as the JSON of interfaces.md (unset optional fields left out)."""
+    return json.dumps(value.model_dump(mode="json", exclude_none=True), indent=2)
+
+
+def write_generation(gen: Generation, out_dir: Path) -> list[Path]:
+    """The five files of `h3ds generate`."""
+    out_dir.mkdir(parents=True, exist_ok=True)
+    texts = {"task_graph.json": dump(gen.task_graph), "plan.json": dump(gen.plan), "layout.json": dump(gen.layout),
+             "house.json": json.dumps(to_house(gen.scene), indent=2)}
+    paths = []
+    for name, text in texts.items():
+        (out_dir / name).write_text(text + "\n")
+        paths.append(out_dir / name)
+    (out_dir / "scene.glb").write_bytes(to_glb(gen.scene))
+    paths.append(out_dir / "scene.glb")
+    return paths

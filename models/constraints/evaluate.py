@@ -1,0 +1,140 @@
+"""Scores constraints on placed objects: for each, an energy (0 when fully met, growing with the
+violation) and a satisfied flag, exactly as the table of constraints.md defines them.
+
+Everything is vectorised over candidate poses of the constrained object A (arrays of length N) against
+one placed target B, so a placer scores all its candidates at once. Footprints are treated as
+axis-aligned boxes, which is exact for rotations that are multiples of 90 degrees.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from models.geometry import boxes, gap_many
+
+EDGE_TOL = 0.05
+MIDDLE_MIN = 0.4
+NEAR_MAX, NEAR_SOFT = 1.0, 0.5
+FAR_MIN = 1.5
+FRONT_MAX_GAP, LATERAL_SLACK = 1.5, 0.3
+SIDE_MAX_GAP = 0.8
+AROUND_MAX_GAP = 0.6
+FACE_MAX_DEG = 45.0
+ALIGN_TOL = 0.1
+
+
+@dataclass(frozen=True)
+class Poses:
+    """N candidate poses of one object (or one pose, N = 1)."""
+
+    x: np.ndarray
+    z: np.ndarray
+    rotation: np.ndarray
+    width: float
+    depth: float
+
+    @classmethod
+    def one(cls, x: float, z: float, rotation: float, width: float, depth: float) -> Poses:
+        return cls(np.array([x], float), np.array([z], float), np.array([rotation], float), width, depth)
+
+    def boxes(self) -> np.ndarray:
+        return boxes(self.x, self.z, self.width, self.depth, self.rotation)
+
+    def fronts(self) -> tuple[np.ndarray, np.ndarray]:
+        r = np.radians(self.rotation)
+        return np.sin(r), np.cos(r)
+
+
+def _gap(a: Poses, b: Poses) -> np.ndarray:
+    return gap_many(a.boxes(), b.boxes())[:, 0]
+
+
+def _angle_between(ux, uz, vx, vz) -> np.ndarray:
+    """Angle in degrees between direction fields u and v."""
+    norm = np.hypot(ux, uz) * np.hypot(vx, vz)
+    cos = np.where(norm > 0, (ux * vx + uz * vz) / np.maximum(norm, 1e-12), 1.0)
+    return np.degrees(np.arccos(np.clip(cos, -1.0, 1.0)))
+
+
+def _frame(a: Poses, b: Poses) -> tuple[np.ndarray, np.ndarray]:
+    """A's centre in B's frame: (ahead along front(B), lateral along right(B))."""
+    bx, bz, br = b.x[0], b.z[0], np.radians(b.rotation[0])
+    dx, dz = a.x - bx, a.z - bz
+    ahead = dx * np.sin(br) + dz * np.cos(br)
+    lateral = dx * np.cos(br) - dz * np.sin(br)
+    return ahead, lateral
+
+
+def _relu(v):
+    return np.maximum(v, 0.0)
+
+
+def relation(name: str, a: Poses, b: Poses) -> tuple[np.ndarray, np.ndarray]:
+    """(energy, satisfied) of `A name B` for every pose of A."""
+    if name == "near":
+        g = _gap(a, b)
+        return _relu(g - NEAR_SOFT), g <= NEAR_MAX
+    if name == "far":
+        g = _gap(a, b)
+        return _relu(FAR_MIN - g), g >= FAR_MIN
+    if name in ("in front of", "behind"):
+        ahead, lateral = _frame(a, b)
+        if name == "behind":
+            ahead = -ahead
+        g = _gap(a, b)
+        lat_max = b.width / 2 + LATERAL_SLACK
+        energy = _relu(b.depth / 2 - ahead) + _relu(np.abs(lateral) - lat_max) + _relu(g - FRONT_MAX_GAP) + 0.2 * g
+        ok = (ahead > b.depth / 2) & (np.abs(lateral) <= lat_max) & (g <= FRONT_MAX_GAP)
+        return energy, ok
+    if name in ("side of", "left of", "right of"):
+        ahead, lateral = _frame(a, b)
+        side = {"side of": np.abs(lateral), "left of": -lateral, "right of": lateral}[name]
+        g = _gap(a, b)
+        ahead_max = b.depth / 2 + LATERAL_SLACK
+        energy = _relu(b.width / 2 - side) + _relu(np.abs(ahead) - ahead_max) + _relu(g - SIDE_MAX_GAP) + 0.2 * g
+        ok = (side > b.width / 2) & (np.abs(ahead) <= ahead_max) & (g <= SIDE_MAX_GAP)
+        return energy, ok
+    if name == "face to":
+        fx, fz = a.fronts()
+        angle = _angle_between(fx, fz, b.x[0] - a.x, b.z[0] - a.z)
+        return _relu(angle - FACE_MAX_DEG) / 90.0, angle <= FACE_MAX_DEG
+    if name == "face same as":
+        diff = np.abs((a.rotation - b.rotation[0] + 180.0) % 360.0 - 180.0)
+        return _relu(diff - FACE_MAX_DEG) / 90.0, diff <= FACE_MAX_DEG
+    if name == "around":
+        g = _gap(a, b)
+        face_e, face_ok = relation("face to", a, b)
+        return _relu(g - AROUND_MAX_GAP) + face_e, (g <= AROUND_MAX_GAP) & face_ok
+    if name == "center aligned":
+        off = np.minimum(np.abs(a.x - b.x[0]), np.abs(a.z - b.z[0]))
+        return _relu(off - ALIGN_TOL), off <= ALIGN_TOL
+    raise ValueError(f"unknown constraint {name!r}")
+
+
+def back_wall_distance(a: Poses, room_width: float, room_depth: float) -> np.ndarray:
+    """Distance from the middle of A's back side to the wall behind it, measured along -front(A)."""
+    fx, fz = a.fronts()
+    bx, bz = a.x - fx * a.depth / 2, a.z - fz * a.depth / 2
+    with np.errstate(divide="ignore", invalid="ignore"):
+        tx = np.where(fx > 1e-9, bx / fx, np.where(fx < -1e-9, (room_width - bx) / -fx, np.inf))
+        tz = np.where(fz > 1e-9, bz / fz, np.where(fz < -1e-9, (room_depth - bz) / -fz, np.inf))
+    return np.minimum(tx, tz)
+
+
+def wall_clearance(a: Poses, room_width: float, room_depth: float) -> np.ndarray:
+    b = a.boxes()
+    return np.min(np.stack([b[:, 0], b[:, 1], room_width - b[:, 2], room_depth - b[:, 3]]), axis=0)
+
+
+def placement(name: str, a: Poses, room_width: float, room_depth: float) -> tuple[np.ndarray, np.ndarray]:
+    """(energy, satisfied) of the global placement `edge` or `middle`."""
+    if name == "edge":
+        d = back_wall_distance(a, room_width, room_depth)
+        inside = wall_clearance(a, room_width, room_depth) >= -1e-6
+        return _relu(np.abs(d) - EDGE_TOL), (np.abs(d) <= EDGE_TOL + 1e-9) & inside
+    if name == "middle":
+        c = wall_clearance(a, room_width, room_depth)
+        return _relu(MIDDLE_MIN - c), c >= MIDDLE_MIN - 1e-9
+    raise ValueError(f"unknown placement {name!r}")

@@ -1,0 +1,1 @@
+"""Scene -> files, one module per exchange format (as trimesh does)."""

@@ -1,0 +1,88 @@
+"""Scene -> binary glTF (GLB) with trimesh: floor, walls with door and window openings, and every
+object as a box at its true size, coloured by role and named by its id (Blender's outliner shows them).
+
+glTF is right-handed and AI2-THOR (Unity) left-handed, so z is negated on the way out; the scene
+looks the same as in AI2-THOR instead of mirrored.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import trimesh
+
+from models.exports.procthor_house import wall_segments
+from models.values import Scene, SceneObject
+
+ROLE_COLOURS = {"anchor": (220, 60, 60, 255), "key": (240, 160, 40, 255), "inference": (60, 120, 220, 255),
+                "context": (170, 170, 170, 255)}
+FLOOR_COLOUR = (200, 190, 170, 255)
+WALL_COLOUR = (235, 235, 230, 255)
+WALL_THICKNESS = 0.1
+UNITY_TO_GLTF = np.diag([1.0, 1.0, -1.0, 1.0])
+
+
+def _box(extents, centre, yaw_deg: float, colour, name: str) -> trimesh.Trimesh:
+    mesh = trimesh.creation.box(extents=extents)
+    r = np.radians(yaw_deg)  # Unity yaw: front (sin r, cos r); a turn about +y in left-handed axes
+    rot = np.array([[np.cos(r), 0, np.sin(r), 0], [0, 1, 0, 0], [-np.sin(r), 0, np.cos(r), 0], [0, 0, 0, 1]])
+    move = np.eye(4)
+    move[:3, 3] = centre
+    mesh.apply_transform(move @ rot)
+    mesh.visual.face_colors = colour
+    mesh.metadata["name"] = name
+    return mesh
+
+
+def _wall_pieces(scene: Scene) -> list[trimesh.Trimesh]:
+    """Each wall cut into solid pieces around its openings."""
+    room = scene.room
+    height = room.wall_height or 2.6
+    pieces = []
+    for wall, (x0, z0, x1, z1) in wall_segments(room.width, room.depth).items():
+        length = room.wall_length(wall)
+        holes = sorted([(o.center - o.width / 2, o.center + o.width / 2, o.sill or 0.0, (o.sill or 0.0) + (o.height or 2.0))
+                        for o in room.doors + room.windows if o.wall == wall])
+        spans, cursor = [], 0.0
+        for lo, hi, bottom, top in holes:
+            spans.append((cursor, lo, 0.0, height))
+            if bottom > 0:
+                spans.append((lo, hi, 0.0, bottom))
+            spans.append((lo, hi, top, height))
+            cursor = hi
+        spans.append((cursor, length, 0.0, height))
+        along = np.array([x1 - x0, z1 - z0]) / length
+        outward = {"south": (0, -1), "north": (0, 1), "west": (-1, 0), "east": (1, 0)}[wall]
+        for k, (a, b, y0, y1) in enumerate(spans):
+            if b - a < 1e-3 or y1 - y0 < 1e-3:
+                continue
+            mid = (a + b) / 2
+            cx = x0 + along[0] * mid + outward[0] * WALL_THICKNESS / 2
+            cz = z0 + along[1] * mid + outward[1] * WALL_THICKNESS / 2
+            ext = (b - a, y1 - y0, WALL_THICKNESS) if wall in ("south", "north") else (WALL_THICKNESS, y1 - y0, b - a)
+            pieces.append(_box(ext, (cx, (y0 + y1) / 2, cz), 0, WALL_COLOUR, f"wall-{wall}-{k}"))
+    return pieces
+
+
+def _object_meshes(obj: SceneObject) -> list[trimesh.Trimesh]:
+    colour = ROLE_COLOURS.get(obj.role, ROLE_COLOURS["context"])
+    meshes = [_box((obj.size.x, obj.size.y, obj.size.z), (obj.x, obj.y, obj.z), obj.rotation, colour, obj.id)]
+    for child in obj.children:
+        meshes += _object_meshes(child)
+    return meshes
+
+
+def to_trimesh_scene(scene: Scene) -> trimesh.Scene:
+    room = scene.room
+    meshes = [_box((room.width, 0.02, room.depth), (room.width / 2, -0.01, room.depth / 2), 0, FLOOR_COLOUR, "floor")]
+    meshes += _wall_pieces(scene)
+    for obj in scene.objects:
+        meshes += _object_meshes(obj)
+    out = trimesh.Scene()
+    for mesh in meshes:
+        mesh.apply_transform(UNITY_TO_GLTF)
+        out.add_geometry(mesh, node_name=mesh.metadata["name"], geom_name=mesh.metadata["name"])
+    return out
+
+
+def to_glb(scene: Scene) -> bytes:
+    return to_trimesh_scene(scene).export(file_type="glb")

@@ -1,0 +1,111 @@
+"""Footprint geometry on the floor plane (x, z) with the rotation convention of interfaces.md.
+
+A footprint is an object's width x depth rectangle centred at (x, z), turned by `rotation` degrees about
++y: its front is (sin r, cos r) and its right is (cos r, -sin r). The scalar functions are exact for any
+rotation (shapely); the `*_many` functions are vectorised with numpy over axis-aligned boxes, exact for
+rotations that are multiples of 90 degrees (the placers' case) and conservative otherwise.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from shapely.geometry import Polygon, box
+
+
+def front(rotation: float) -> tuple[float, float]:
+    r = math.radians(rotation)
+    return math.sin(r), math.cos(r)
+
+
+def right(rotation: float) -> tuple[float, float]:
+    r = math.radians(rotation)
+    return math.cos(r), -math.sin(r)
+
+
+def half_extents(width, depth, rotation):
+    """Half-sizes along x and z of the axis-aligned box around a turned rectangle (numpy-friendly)."""
+    r = np.radians(rotation)
+    c, s = np.abs(np.cos(r)), np.abs(np.sin(r))
+    return (width * c + depth * s) / 2, (width * s + depth * c) / 2
+
+
+@dataclass(frozen=True)
+class Footprint:
+    x: float
+    z: float
+    width: float
+    depth: float
+    rotation: float = 0.0
+
+    def corners(self) -> list[tuple[float, float]]:
+        """Corners counter-clockwise from back-left, in world (x, z)."""
+        fx, fz = front(self.rotation)
+        rx, rz = right(self.rotation)
+        hw, hd = self.width / 2, self.depth / 2
+        return [(self.x + lx * rx + lz * fx, self.z + lx * rz + lz * fz)
+                for lx, lz in ((-hw, -hd), (hw, -hd), (hw, hd), (-hw, hd))]
+
+    def polygon(self) -> Polygon:
+        return Polygon(self.corners())
+
+    def back_point(self) -> tuple[float, float]:
+        fx, fz = front(self.rotation)
+        return self.x - fx * self.depth / 2, self.z - fz * self.depth / 2
+
+    def front_zone(self, clearance: float, widen: float = 0.0) -> Footprint:
+        """The rectangle of depth `clearance` in front of the object (the space needed to use it)."""
+        fx, fz = front(self.rotation)
+        offset = self.depth / 2 + clearance / 2
+        return Footprint(self.x + fx * offset, self.z + fz * offset, self.width + widen, clearance, self.rotation)
+
+
+def overlap_area(a: Footprint, b: Footprint) -> float:
+    return a.polygon().intersection(b.polygon()).area
+
+
+def gap(a: Footprint, b: Footprint) -> float:
+    """Shortest distance between two footprints, 0 when they touch or overlap."""
+    return a.polygon().distance(b.polygon())
+
+
+def outside_area(a: Footprint, width: float, depth: float) -> float:
+    """Area of the footprint that lies outside the room [0, width] x [0, depth]."""
+    poly = a.polygon()
+    return poly.area - poly.intersection(box(0, 0, width, depth)).area
+
+
+def inside_room(a: Footprint, width: float, depth: float, tol: float = 1e-6) -> bool:
+    xs, zs = zip(*a.corners())
+    return min(xs) >= -tol and min(zs) >= -tol and max(xs) <= width + tol and max(zs) <= depth + tol
+
+
+def wall_clearance(a: Footprint, width: float, depth: float) -> float:
+    """Smallest distance from the footprint to any of the four walls (negative if it crosses one)."""
+    xs, zs = zip(*a.corners())
+    return min(min(xs), min(zs), width - max(xs), depth - max(zs))
+
+
+# ---- vectorised, axis-aligned -------------------------------------------------------------------
+
+def boxes(x, z, width, depth, rotation) -> np.ndarray:
+    """(N, 4) array of axis-aligned boxes [xmin, zmin, xmax, zmax]."""
+    ex, ez = half_extents(np.asarray(width, float), np.asarray(depth, float), np.asarray(rotation, float))
+    x, z = np.asarray(x, float), np.asarray(z, float)
+    return np.stack(np.broadcast_arrays(x - ex, z - ez, x + ex, z + ez), axis=-1)
+
+
+def overlap_many(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """(N, M) overlap areas between boxes a (N, 4) and b (M, 4)."""
+    dx = np.minimum(a[:, None, 2], b[None, :, 2]) - np.maximum(a[:, None, 0], b[None, :, 0])
+    dz = np.minimum(a[:, None, 3], b[None, :, 3]) - np.maximum(a[:, None, 1], b[None, :, 1])
+    return np.clip(dx, 0, None) * np.clip(dz, 0, None)
+
+
+def gap_many(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """(N, M) shortest distances between boxes a (N, 4) and b (M, 4)."""
+    dx = np.maximum(0, np.maximum(a[:, None, 0] - b[None, :, 2], b[None, :, 0] - a[:, None, 2]))
+    dz = np.maximum(0, np.maximum(a[:, None, 1] - b[None, :, 3], b[None, :, 1] - a[:, None, 3]))
+    return np.hypot(dx, dz)

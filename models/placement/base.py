@@ -1,0 +1,55 @@
+"""The one interface every placer implements, and the registry the CLI, API and studio choose from."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Protocol
+
+import numpy as np
+
+from models.values import ConstraintPlan, Layout
+
+
+@dataclass(frozen=True)
+class PlacementStep:
+    """What a placer did for one object: shown step by step in the studio."""
+
+    object_id: str
+    x: float | None
+    z: float | None
+    rotation: float | None
+    candidates: np.ndarray  # (N, 3): x, z, rotation of every candidate considered
+    scores: np.ndarray  # (N,) higher is better; -inf for candidates that fail a hard filter
+    terms: dict[str, float]  # energy terms of the chosen pose
+
+
+StepObserver = Callable[[PlacementStep], None]
+
+
+class Solver(Protocol):
+    name: str
+
+    def solve(self, plan: ConstraintPlan, seed: int = 0, time_budget_s: float | None = None,
+              observer: StepObserver | None = None) -> Layout: ...
+
+
+class UnknownSolver(ValueError):
+    def __init__(self, name: str):
+        super().__init__(f"unknown solver {name!r}; available: {', '.join(sorted(SOLVERS))}")
+
+
+def _dfs() -> Solver:
+    from models.placement.dfs import DFSSolver
+    return DFSSolver()
+
+
+SOLVERS: dict[str, Callable[[], Solver]] = {"dfs": _dfs}
+DEFAULT_SOLVER = "dfs"
+
+
+def get_solver(name: str | None = None) -> Solver:
+    key = (name or DEFAULT_SOLVER).strip().lower()
+    if key not in SOLVERS:
+        raise UnknownSolver(name or "")
+    return SOLVERS[key]()

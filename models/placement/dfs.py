@@ -1,0 +1,107 @@
+"""A depth-first placer in the manner of Holodeck's DFS solver.
+
+Objects are taken in dependency order; for each, every grid pose in four rotations is filtered by the
+hard rules and scored by its constraints, and the search branches over the best few. It stops at the
+first layout that places everything, or when the time budget runs out, returning the best layout seen
+(most objects placed, then highest score). Unlike Holodeck's, it never drops an object silently: an
+object with no valid pose is reported in `unplaced` with the reason.
+"""
+
+from __future__ import annotations
+
+import random
+import time
+
+import numpy as np
+
+from models.placement.base import PlacementStep, StepObserver
+from models.placement.candidates import CandidateScorer, PlacedObject
+from models.placement.problem import PlacementProblem
+from models.values import ConstraintPlan, Layout, Placement, Provenance, Timing, Unplaced
+
+BRANCH = 3
+MIN_SPREAD = 0.3  # branches differ by at least this much (m), or by rotation
+NO_ROOM = "no collision-free position left in the room"
+
+
+class DFSSolver:
+    name = "dfs"
+
+    def __init__(self, branch: int = BRANCH, time_budget_s: float = 2.0):
+        self.branch = branch
+        self.time_budget_s = time_budget_s
+
+    def solve(self, plan: ConstraintPlan, seed: int = 0, time_budget_s: float | None = None,
+              observer: StepObserver | None = None) -> Layout:
+        start = time.perf_counter()
+        deadline = start + (time_budget_s if time_budget_s is not None else self.time_budget_s)
+        problem = PlacementProblem.from_plan(plan)
+        scorer = CandidateScorer(problem)
+        rng = np.random.default_rng(seed)
+        order = problem.order
+        best: dict = {"placed": [], "failed": {}, "key": (-1, -np.inf), "steps": []}
+
+        def choices(i: int, placed: list[PlacedObject]):
+            obj = order[i]
+            cands, scores, terms = scorer.evaluate(obj, placed, strict=True)
+            if not np.isfinite(scores).any():  # relax the front-clearance rules before giving up
+                cands, scores, terms = scorer.evaluate(obj, placed, strict=False)
+            scores = scores + rng.uniform(0, 1e-3, size=len(scores))
+            picks: list[int] = []
+            for idx in np.argsort(-scores):
+                if not np.isfinite(scores[idx]) or len(picks) == self.branch:
+                    break
+                if all(cands[idx, 2] != cands[j, 2] or np.hypot(*(cands[idx, :2] - cands[j, :2])) >= MIN_SPREAD
+                       for j in picks):
+                    picks.append(int(idx))
+            return cands, scores, terms, picks
+
+        def search(i: int, placed: list[PlacedObject], failed: dict[str, str], total: float, steps: list) -> bool:
+            if i == len(order) or time.perf_counter() > deadline:
+                key = (len(placed), total)
+                if key > best["key"]:
+                    best.update(placed=list(placed), failed=dict(failed), key=key, steps=list(steps))
+                return i == len(order) and not failed
+            obj = order[i]
+            cands, scores, terms, picks = choices(i, placed)
+            if not picks:
+                steps.append(PlacementStep(obj.id, None, None, None, cands, scores, {}))
+                found = search(i + 1, placed, {**failed, obj.id: NO_ROOM}, total, steps)
+                steps.pop()
+                return found
+            for idx in picks:
+                x, z, rot = (float(v) for v in cands[idx])
+                placed.append(scorer.place(obj, x, z, rot))
+                steps.append(PlacementStep(obj.id, x, z, rot, cands, scores,
+                                           {k: float(v[idx]) for k, v in terms.items()}))
+                if search(i + 1, placed, failed, total + float(scores[idx]), steps):
+                    return True
+                placed.pop()
+                steps.pop()
+                if time.perf_counter() > deadline:
+                    break
+            return False
+
+        search(0, [], {}, 0.0, [])
+        if observer is not None:
+            for step in best["steps"]:
+                observer(step)
+        return self._layout(plan, problem, best, seed, time.perf_counter() - start)
+
+    def _layout(self, plan: ConstraintPlan, problem: PlacementProblem, best: dict, seed: int,
+                elapsed: float) -> Layout:
+        by_id = {p.id: p for p in best["placed"]}
+        placements = [Placement(id=o.id, type=o.type, x=round(by_id[o.id].x, 4), z=round(by_id[o.id].z, 4),
+                                rotation=by_id[o.id].rotation, size=o.size)
+                      for o in plan.objects if o.id in by_id]
+        reasons = {u.id: u.reason for u in problem.impossible}
+        reasons.update(best["failed"])
+        for o in problem.order:  # objects the search never reached before its time ran out
+            if o.id not in by_id:
+                reasons.setdefault(o.id, "time budget ran out before it was placed")
+        unplaced = [Unplaced(id=o.id, reason=reasons[o.id]) for o in plan.objects if o.id not in by_id]
+        n = max(len(plan.objects), 1)
+        return Layout(plan_id=plan.id, solver=self.name, seed=seed, placements=placements, unplaced=unplaced,
+                      warnings=list(problem.warnings),
+                      timing=Timing(total_s=round(elapsed, 4), per_object_s=round(elapsed / n, 5)),
+                      provenance=Provenance(stage="layout", method=self.name, seed=seed))

@@ -1,0 +1,63 @@
+"""A placement problem: a plan with its constraints read, its objects ordered, and impossible ones set aside."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from models.constraints import ConstraintSet, read_constraints
+from models.values import ConstraintPlan, PlanObject, Unplaced
+from models.world import catalogue
+
+DOOR_CLEARANCE = 0.9  # depth of the free rectangle kept inside every door
+
+
+@dataclass
+class PlacementProblem:
+    plan: ConstraintPlan
+    constraints: ConstraintSet
+    order: list[PlanObject]  # targets before the objects constrained to them, task objects early
+    impossible: list[Unplaced] = field(default_factory=list)
+    clearance: dict[str, float] = field(default_factory=dict)  # object id -> front clearance depth
+
+    @property
+    def warnings(self) -> list[str]:
+        return self.constraints.warnings
+
+    @classmethod
+    def from_plan(cls, plan: ConstraintPlan) -> PlacementProblem:
+        cat = catalogue()
+        types = {o.id: o.type for o in plan.objects}
+        constraints = read_constraints(
+            plan.constraints, [o.id for o in plan.objects],
+            default_placement=lambda oid: cat.default_placement(types[oid]) if types[oid] in cat else "edge")
+        room = plan.room
+        impossible, feasible = [], []
+        for o in plan.objects:
+            small, large = sorted((o.size.x, o.size.z))
+            if small > min(room.width, room.depth) or large > max(room.width, room.depth):
+                impossible.append(Unplaced(id=o.id, reason=f"larger than the room ({o.size.x} x {o.size.z} m "
+                                                           f"in {room.width} x {room.depth} m)"))
+            else:
+                feasible.append(o)
+        clearance = {o.id: cat.front_clearance(o.type) if o.type in cat else 0.0 for o in plan.objects}
+        return cls(plan, constraints, _order(feasible, constraints), impossible, clearance)
+
+
+def _order(objects: list[PlanObject], constraints: ConstraintSet) -> list[PlanObject]:
+    """Topological order of the 'target before dependent' graph; cycles are broken by priority.
+
+    Priority: task objects first, then wall objects, then larger footprints (Holodeck's habit).
+    """
+    def priority(o: PlanObject) -> tuple:
+        oc = constraints.objects[o.id]
+        return (not o.is_task, oc.placement != "edge", -o.size.x * o.size.z, o.id)
+
+    remaining = {o.id: o for o in objects}
+    deps = {o.id: {c.target for c in constraints.objects[o.id].relations if c.target in remaining} for o in objects}
+    order: list[PlanObject] = []
+    while remaining:
+        ready = [o for oid, o in remaining.items() if not (deps[oid] & remaining.keys())]
+        pick = min(ready or remaining.values(), key=priority)
+        order.append(pick)
+        del remaining[pick.id]
+    return order

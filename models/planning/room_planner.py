@@ -1,0 +1,207 @@
+"""TaskGraph -> RoomPlan: the room shell plus the task objects and context objects drawn from real priors.
+
+Floor objects (fridge, counter, table...) go to the placer; everything that stands on or in something
+(bread, microwave, desk lamp) becomes a surface object with a parent floor object, which is added
+when the room has none that can hold it. Context objects are sampled from how often each type occurs
+in the 120 hand-designed iTHOR rooms of that type (authored priors for the five other room types), and
+furniture groups (a dining table with its chairs, a desk with its chair) follow ProcTHOR's groups.
+Deterministic for a seed.
+"""
+
+from __future__ import annotations
+
+import random
+from collections import Counter
+from dataclasses import dataclass
+
+from models.planning.shell import make_room
+from models.values import PlanObject, Provenance, RoomPlan, Size, SurfaceObject, TaskGraph
+from models.world import catalogue
+from models.world.catalogue import Catalogue, load_json
+from models.world.rooms import AUTHORED_ROOM_PRIORS, ROOM_SPECS
+
+# Floor types that are task furniture only, never sampled as context (they'd clutter every room).
+NEVER_CONTEXT = {"BaseballBat", "BasketBall", "Box", "Plunger", "Boots", "GarbageBag", "RoomDecor", "Television"}
+GROUP_MEMBER_TYPES = {"Chair", "FloorLamp", "ArmChair", "Sofa"}
+# Receptacles where an object starts when it must be picked up: open surfaces people reach easily.
+OPEN_SURFACES = ("CounterTop", "DiningTable", "SideTable", "Desk", "CoffeeTable", "Dresser", "ShelvingUnit",
+                 "Bed", "Sofa", "ArmChair", "Sink", "Toilet")
+FLOOR_FILL_LIMIT = 0.42  # share of the floor that furniture footprints may cover
+
+
+@dataclass(frozen=True)
+class RoomPlannerSettings:
+    """Knobs of the generator (the constraint datasets vary them to make different distributions)."""
+
+    min_context: int = 2
+    max_context: int = 8
+    size_scale: float = 1.0
+    surface_items: float = 0.5  # expected context items per open surface
+    group_chance: float = 0.8
+
+
+def plan_role(roles: list[str]) -> str:
+    for r in ("anchor", "inference", "key"):
+        if r in roles:
+            return r
+    return "context"
+
+
+class RoomPlanner:
+    name = "prior-sampler"
+
+    def __init__(self, settings: RoomPlannerSettings | None = None, cat: Catalogue | None = None):
+        self.settings = settings or RoomPlannerSettings()
+        self.cat = cat or catalogue()
+        self.groups = load_json("asset_groups.json")
+
+    def plan(self, graph: TaskGraph, seed: int = 0, plan_id: str | None = None) -> RoomPlan:
+        rng = random.Random(seed)
+        room_type = graph.room_type
+        counter: Counter[str] = Counter()
+        floor: list[PlanObject] = []
+        surface: list[SurfaceObject] = []
+
+        def new_id(type_name: str) -> str:
+            n = counter[type_name]
+            counter[type_name] += 1
+            return f"{type_name.lower()}-{n}"
+
+        def add_floor(type_name: str, role: str) -> PlanObject:
+            asset = self.cat.pick_asset(type_name, rng)
+            obj = PlanObject(id=new_id(type_name), type=type_name, size=Size(x=asset.size[0], y=asset.size[1],
+                                                                              z=asset.size[2]), role=role)
+            floor.append(obj)
+            return obj
+
+        # 1. task objects
+        pending: list[tuple[str, str]] = []
+        for task_obj in graph.objects:
+            role = plan_role(task_obj.roles)
+            if self.cat.is_floor_object(task_obj.type) and not self.cat.host(task_obj.type).pickupable:
+                add_floor(task_obj.type, role)
+            else:
+                pending.append((task_obj.type, role))
+        anchor_ids = {o.id for o in floor if o.role == "anchor"}
+
+        # 2. context furniture from the room priors, then the groups they anchor
+        for type_name in self._sample_context(room_type, rng, {o.type for o in floor}):
+            add_floor(type_name, "context")
+        for root in list(floor):
+            for member in self._group_members(root.type, room_type, rng):
+                add_floor(member, "context")
+
+        # 3. surface objects: task objects first (the manipulated one away from its destination)
+        target = graph.target
+        for type_name, role in pending:
+            avoid = anchor_ids if type_name == target else set()
+            parent = self._parent_for(type_name, floor, avoid, rng) or add_floor(self._host_type_for(type_name,
+                                                                                                      room_type), "context")
+            surface.append(self._surface(type_name, role, parent.id, new_id, rng))
+        for obj in list(floor):
+            if obj.type in OPEN_SURFACES and rng.random() < self.settings.surface_items:
+                child = self._sample_child(obj.type, room_type, rng)
+                if child:
+                    surface.append(self._surface(child, "context", obj.id, new_id, rng))
+
+        floor = self._fit_floor(floor, surface, room_type, rng)
+        min_area = sum(o.size.x * o.size.z for o in floor) / FLOOR_FILL_LIMIT
+        room = make_room(room_type, rng, min_area=min_area, size_scale=self.settings.size_scale)
+        kept = {o.id for o in floor}
+        surface = [s for s in surface if s.parent in kept]
+        return RoomPlan(id=plan_id or f"plan-{seed}", room=room, objects=floor, surface_objects=surface,
+                        provenance=Provenance(stage="room_plan", method=self.name, seed=seed))
+
+    # ---- selection helpers -----------------------------------------------------------------------
+
+    def _candidates(self, room_type: str) -> dict[str, float]:
+        if ROOM_SPECS[room_type].ithor is None:
+            return dict(AUTHORED_ROOM_PRIORS[room_type])
+        out = {}
+        for name, t in self.cat.types.items():
+            if t.on_floor and not t.pickupable and name not in NEVER_CONTEXT and t.assets:
+                p = self.cat.room_presence(name, room_type)
+                if p > 0.05:
+                    out[name] = p
+        return out
+
+    def _sample_context(self, room_type: str, rng: random.Random, present: set[str]) -> list[str]:
+        s = self.settings
+        weights = self._candidates(room_type)
+        chosen = []
+        for name in sorted(weights):
+            if name in present and not self.cat[name].placement.get("multiple_per_room"):
+                continue
+            if rng.random() < weights[name]:
+                count = 1
+                if self.cat[name].placement.get("multiple_per_room"):
+                    count = max(1, min(3, round(self.cat.room_mean_count(name, room_type))))
+                chosen += [name] * count
+        rng.shuffle(chosen)
+        chosen.sort(key=lambda n: -weights[n])
+        chosen = chosen[:s.max_context]
+        for name in sorted(weights, key=lambda n: -weights[n]):
+            if len(chosen) >= s.min_context:
+                break
+            if name not in chosen and name not in present:
+                chosen.append(name)
+        return chosen
+
+    def _group_members(self, root: str, room_type: str, rng: random.Random) -> list[str]:
+        ithor_key = {"kitchen": "kitchens", "living room": "livingRooms", "bedroom": "bedrooms",
+                     "bathroom": "bathrooms"}.get(room_type)
+        options = [g for g in self.groups.values() if g["members"][0]["type"] == root
+                   and (ithor_key is None or g["room_weights"].get(ithor_key, 0) > 0)
+                   and any(m["type"] in GROUP_MEMBER_TYPES for m in g["members"][1:])]
+        if not options or rng.random() > self.settings.group_chance:
+            return []
+        group = rng.choice(sorted(options, key=lambda g: len(g["members"])))
+        return [m["type"].split("-")[0] for m in group["members"][1:] if m["type"].split("-")[0] in GROUP_MEMBER_TYPES]
+
+    def _accepts(self, parent_type: str, child: str) -> float:
+        return self.cat.host(parent_type).contents.get(child, 0.0)
+
+    def _parent_for(self, child: str, floor: list[PlanObject], avoid: set[str],
+                    rng: random.Random) -> PlanObject | None:
+        scored = [(self._accepts(o.type, child), o) for o in floor if o.id not in avoid]
+        scored = [(p, o) for p, o in scored if p > 0]
+        if not scored:
+            return None
+        best = max(p for p, _ in scored)
+        return rng.choice([o for p, o in scored if p == best])
+
+    def _host_type_for(self, child: str, room_type: str) -> str:
+        """The floor receptacle that most often holds `child`, weighted by how common it is in the room."""
+        options = [n for n, t in self.cat.types.items() if t.on_floor and not t.pickupable and t.assets
+                   and t.contents.get(child, 0) > 0]
+        if not options:
+            return "CounterTop" if room_type == "kitchen" else "SideTable"
+        return max(options, key=lambda n: (self.cat[n].contents[child] * (0.1 + self.cat.room_presence(n, room_type)), n))
+
+    def _sample_child(self, parent: str, room_type: str, rng: random.Random) -> str | None:
+        contents = {c: p * (0.05 + self.cat.room_presence(c, room_type))
+                    for c, p in self.cat.host(parent).contents.items()
+                    if c in self.cat and self.cat[c].pickupable and self.cat[c].assets}
+        if not contents:
+            return None
+        names = sorted(contents)
+        return rng.choices(names, weights=[contents[n] for n in names])[0]
+
+    def _surface(self, type_name: str, role: str, parent: str, new_id, rng: random.Random) -> SurfaceObject:
+        asset = self.cat.pick_asset(type_name, rng)
+        return SurfaceObject(id=new_id(type_name), type=type_name, role=role, parent=parent,
+                             size=Size(x=asset.size[0], y=asset.size[1], z=asset.size[2]))
+
+    def _fit_floor(self, floor: list[PlanObject], surface: list[SurfaceObject], room_type: str,
+                   rng: random.Random) -> list[PlanObject]:
+        """Drop context furniture (least needed first) while it would cover too much of the largest room."""
+        spec = ROOM_SPECS[room_type]
+        largest = (spec.max_side * self.settings.size_scale) ** 2
+        needed = {s.parent for s in surface if s.role != "context"}
+        floor = list(floor)
+        while sum(o.size.x * o.size.z for o in floor) > FLOOR_FILL_LIMIT * largest:
+            droppable = [o for o in floor if o.role == "context" and o.id not in needed]
+            if not droppable:
+                break
+            floor.remove(max(droppable, key=lambda o: o.size.x * o.size.z))
+        return floor

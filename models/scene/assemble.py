@@ -1,0 +1,116 @@
+"""Layout -> Scene.
+
+Each placed floor object gets the real asset its plan size came from; each surface object goes on
+(or, for fridges, microwaves, safes and the like, in) its parent as an AI2-THOR child, spread over
+the parent's top so that no two children share a spot. If a parent could not be placed, its children
+move to another placed receptacle that accepts them, or are reported unplaced. The robot starts just
+inside the first door facing in; the VR user stands in front of the anchor, facing it.
+"""
+
+from __future__ import annotations
+
+import random
+
+from models.geometry import front
+from models.values import (AgentPose, Layout, Placement, Provenance, RoomPlan, Scene, SceneObject, SurfaceObject,
+                           TaskGraph, Unplaced)
+from models.world import catalogue
+from models.world.catalogue import HOST_TYPES
+
+INSIDE_TYPES = {"Fridge", "Microwave", "Safe", "Cabinet", "Drawer", "GarbageCan", "Box", "Toilet", "SinkBasin",
+                "BathtubBasin", "Sink", "LaundryHamper", "WashingMachine", "ClothesDryer"}
+ROBOT_INSET = 0.6
+VR_DISTANCE = 0.6
+
+
+def _slots(parent: Placement, n: int) -> list[tuple[float, float]]:
+    """n spots spread along the parent's width, in world (x, z)."""
+    fx, fz = front(parent.rotation)
+    rx, rz = fz, -fx
+    usable = parent.size.x * 0.8
+    spots = []
+    for k in range(n):
+        lateral = -usable / 2 + usable * (k + 0.5) / n
+        spots.append((parent.x + rx * lateral, parent.z + rz * lateral))
+    return spots
+
+
+def _child(obj: SurfaceObject, parent: Placement, parent_type: str, spot: tuple[float, float], asset_id: str,
+           rotation: float) -> SceneObject:
+    if parent_type in INSIDE_TYPES:
+        y = min(parent.size.y * 0.5, parent.size.y - obj.size.y / 2)
+    else:
+        y = parent.size.y + obj.size.y / 2
+    return SceneObject(id=obj.id, type=obj.type, asset_id=asset_id, role=obj.role, x=round(spot[0], 4),
+                       y=round(max(y, obj.size.y / 2), 4), z=round(spot[1], 4), rotation=rotation, size=obj.size)
+
+
+def robot_start(plan: RoomPlan) -> AgentPose:
+    room = plan.room
+    if not room.doors:
+        return AgentPose(x=room.width / 2, z=room.depth / 2, rotation=0)
+    d = room.doors[0]
+    return {"south": AgentPose(x=d.center, z=ROBOT_INSET, rotation=0),
+            "north": AgentPose(x=d.center, z=room.depth - ROBOT_INSET, rotation=180),
+            "west": AgentPose(x=ROBOT_INSET, z=d.center, rotation=90),
+            "east": AgentPose(x=room.width - ROBOT_INSET, z=d.center, rotation=270)}[d.wall]
+
+
+def vr_anchor(objects: list[SceneObject], graph: TaskGraph | None, width: float, depth: float) -> AgentPose | None:
+    """Where the VR user stands: in front of the anchor (or of the floor object that holds it), facing it."""
+    if graph is None or graph.anchor is None:
+        return None
+    anchor_type = graph.anchor.type
+    for o in objects:
+        holder = o if o.type == anchor_type else next((o for c in o.children if c.type == anchor_type), None)
+        if holder is not None:
+            fx, fz = front(holder.rotation)
+            dist = holder.size.z / 2 + VR_DISTANCE
+            x = min(max(holder.x + fx * dist, 0.2), width - 0.2)
+            z = min(max(holder.z + fz * dist, 0.2), depth - 0.2)
+            return AgentPose(x=round(x, 3), z=round(z, 3), rotation=(holder.rotation + 180) % 360, horizon=20)
+    return None
+
+
+def assemble_scene(plan: RoomPlan, layout: Layout, graph: TaskGraph | None = None, seed: int = 0) -> Scene:
+    cat = catalogue()
+    rng = random.Random(seed)
+    warnings = list(layout.warnings)
+    plan_objects = {o.id: o for o in plan.objects}
+    placed = {p.id: p for p in layout.placements}
+
+    children: dict[str, list[SurfaceObject]] = {pid: [] for pid in placed}
+    unplaced = list(layout.unplaced)
+    for s in plan.surface_objects:
+        parent_id = s.parent if s.parent in placed else None
+        if parent_id is None:
+            accepting = sorted((cat.host(p.type).contents.get(s.type, 0.0), pid) for pid, p in placed.items())
+            accepting = [a for a in accepting if a[0] > 0]
+            if accepting:
+                parent_id = accepting[-1][1]
+                warnings.append(f"{s.id} moved to {parent_id}: its receptacle {s.parent} could not be placed")
+            else:
+                unplaced.append(Unplaced(id=s.id, reason=f"its receptacle {s.parent} could not be placed"))
+                continue
+        children[parent_id].append(s)
+
+    objects = []
+    for pid, p in placed.items():
+        obj = plan_objects.get(pid)
+        asset = cat.pick_asset(p.type, rng, fits=(p.size.x, p.size.z))
+        if p.type in HOST_TYPES:
+            warnings.append(f"{pid}: AI2-THOR has no {p.type} asset of its own; exported as "
+                            f"{cat.host(p.type).name} asset {asset.asset_id}")
+        kids = [_child(c, p, p.type, spot, cat.pick_asset(c.type, rng, fits=(c.size.x, c.size.z)).asset_id,
+                       p.rotation)
+                for c, spot in zip(children[pid], _slots(p, len(children[pid])))]
+        objects.append(SceneObject(id=pid, type=p.type, asset_id=asset.asset_id,
+                                   role=obj.role if obj else "context", x=p.x, y=round(p.size.y / 2, 4), z=p.z,
+                                   rotation=p.rotation, size=p.size, children=kids))
+    room = plan.room
+    provenance = [pv for pv in (graph.provenance if graph else None, plan.provenance, layout.provenance) if pv]
+    return Scene(id=plan.id, room=room, task_graph=graph, objects=objects, unplaced=unplaced,
+                 robot_start=robot_start(plan), vr_anchor=vr_anchor(objects, graph, room.width, room.depth),
+                 warnings=warnings,
+                 provenance=provenance + [Provenance(stage="scene", method="assemble", seed=seed)])
+

@@ -1,0 +1,155 @@
+"""The catalogue of AI2-THOR object types, loaded from the bundled `models/data/catalogue.json`."""
+
+from __future__ import annotations
+
+import json
+import random
+from dataclasses import dataclass, field
+from functools import cache, cached_property
+from importlib import resources
+
+from models.world.affordance import front_clearance
+from models.world.lexicon import build_lexicon
+from models.world.rooms import AUTHORED_ROOM_PRIORS, ROOM_SPECS
+
+# Types that are parts of a larger fixture in iTHOR and have no ProcTHOR asset of their own: they are
+# placed and exported as the asset of their host (an AI2-THOR counter carries its cabinets and
+# burners), and the scene says so in its warnings.
+HOST_TYPES: dict[str, str] = {
+    "Cabinet": "CounterTop", "StoveBurner": "CounterTop", "SinkBasin": "Sink", "BathtubBasin": "Sink",
+    "Drawer": "Dresser", "Shelf": "ShelvingUnit", "Bathtub": "Sink", "StoveKnob": "CounterTop",
+}
+
+# Types that stand free in the room whatever their wall prior says (they are arranged around others).
+MIDDLE_TYPES = {"Chair", "Stool", "CoffeeTable", "Ottoman", "Cart"}
+
+# Footprints are modelled as rectangles, so L- and C-shaped counters (whose bounding box is mostly
+# empty) are not offered: only the straight ("I") and island counters are.
+RECTANGULAR_ONLY: dict[str, tuple[str, ...]] = {"CounterTop": ("Countertop_I_", "Countertop_Island_")}
+
+
+@dataclass(frozen=True)
+class Asset:
+    asset_id: str
+    size: tuple[float, float, float]  # x (width), y (height), z (depth), metres
+    split: str | None
+
+
+@dataclass(frozen=True)
+class ObjectType:
+    """One AI2-THOR object type with its assets, physical properties and placement priors."""
+
+    name: str
+    assets: tuple[Asset, ...]
+    flags: dict[str, bool]
+    mass: float
+    size: tuple[float, float, float]
+    materials: tuple[str, ...]
+    placement: dict[str, bool | None]
+    rooms: dict[str, dict[str, float]]
+    contents: dict[str, float] = field(default_factory=dict)
+    open_swing: float = 0.0  # how much deeper the asset gets when opened (fridge and cabinet doors), metres
+
+    @property
+    def pickupable(self) -> bool:
+        return self.flags["pickupable"]
+
+    @property
+    def receptacle(self) -> bool:
+        return self.flags["receptacle"]
+
+    @property
+    def on_floor(self) -> bool:
+        return bool(self.placement.get("on_floor"))
+
+    @property
+    def against_wall(self) -> bool:
+        """The prior says it usually stands against a wall (edge or corner) rather than in the middle."""
+        p = self.placement
+        return bool(p.get("on_edge") or p.get("in_corner")) and not p.get("in_middle")
+
+
+class Catalogue:
+    """All object types, the synonym lexicon, and per-room priors."""
+
+    def __init__(self, raw: dict[str, dict]):
+        self.types: dict[str, ObjectType] = {
+            name: ObjectType(
+                name=name,
+                assets=tuple(Asset(a[0], (a[1], a[2], a[3]), a[4]) for a in entry["assets"]
+                             if a[0].startswith(RECTANGULAR_ONLY.get(name, ("",)))),
+                flags=entry["flags"], mass=entry["mass"], size=tuple(entry["size"]),
+                materials=tuple(entry["materials"]), placement=entry["placement"], rooms=entry["rooms"],
+                contents=entry["contents"], open_swing=entry.get("open_swing", 0.0),
+            )
+            for name, entry in raw.items()
+        }
+
+    def __contains__(self, name: str) -> bool:
+        return name in self.types
+
+    def __getitem__(self, name: str) -> ObjectType:
+        return self.types[name]
+
+    @cached_property
+    def lexicon(self) -> dict[str, tuple[str, ...]]:
+        return build_lexicon(sorted(self.types))
+
+    def host(self, name: str) -> ObjectType:
+        """The type whose asset stands for `name` (itself unless it is a fixture part)."""
+        return self.types[HOST_TYPES.get(name, name)]
+
+    def default_placement(self, name: str) -> str:
+        """`edge` or `middle`: the global placement an object gets when its plan line says nothing."""
+        if name in MIDDLE_TYPES:
+            return "middle"
+        return "edge" if self.host(name).against_wall else "middle"
+
+    def front_clearance(self, name: str) -> float:
+        host = self.host(name)
+        return front_clearance(name if name in self.types else host.name, host.open_swing)
+
+    def is_floor_object(self, name: str) -> bool:
+        return self.host(name).on_floor
+
+    def typical_size(self, name: str) -> tuple[float, float, float]:
+        """Median asset size of the type (of its host for fixture parts): what a plan uses before an asset is picked."""
+        host = self.host(name)
+        if not host.assets:
+            return host.size
+        sizes = sorted(host.assets, key=lambda a: a.size[0] * a.size[2])
+        return sizes[len(sizes) // 2].size
+
+    def pick_asset(self, name: str, rng: random.Random, fits: tuple[float, float] | None = None) -> Asset:
+        """A real asset of the type (or its host); with `fits`, the one whose footprint is closest to it."""
+        assets = self.host(name).assets
+        if not assets:
+            raise KeyError(f"no AI2-THOR asset for {name}")
+        if fits is None:
+            return rng.choice(assets)
+        return min(assets, key=lambda a: abs(a.size[0] - fits[0]) + abs(a.size[2] - fits[1]) + 1e-6 * len(a.asset_id))
+
+    def room_presence(self, name: str, room_type: str) -> float:
+        """Chance that a room of this type contains the type: measured in iTHOR where possible, else authored."""
+        spec = ROOM_SPECS[room_type]
+        if spec.ithor is not None:
+            return self.host(name).rooms.get(spec.ithor, {}).get("presence", 0.0)
+        return AUTHORED_ROOM_PRIORS[room_type].get(name, 0.0)
+
+    def room_mean_count(self, name: str, room_type: str) -> float:
+        spec = ROOM_SPECS[room_type]
+        if spec.ithor is None:
+            return 1.0
+        return self.host(name).rooms.get(spec.ithor, {}).get("mean_count", 1.0)
+
+
+@cache
+def catalogue() -> Catalogue:
+    """The bundled catalogue (loaded once per process)."""
+    text = resources.files("models").joinpath("data/catalogue.json").read_text()
+    return Catalogue(json.loads(text))
+
+
+def load_json(name: str):
+    """A bundled data file from `models/data`."""
+    return json.loads(resources.files("models").joinpath(f"data/{name}").read_text())

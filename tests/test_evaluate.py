@@ -1,0 +1,65 @@
+"""Every constraint of constraints.md on hand-built poses whose answer is known."""
+
+import pytest
+
+from models.constraints.evaluate import Poses, placement, relation
+
+# B: a 2 m wide, 1 m deep table at (5, 5) facing +z (north).
+B = Poses.one(5, 5, 0, 2.0, 1.0)
+
+
+def rel(name, x, z, rotation=0.0, w=0.5, d=0.5):
+    energy, ok = relation(name, Poses.one(x, z, rotation, w, d), B)
+    return bool(ok[0]), float(energy[0])
+
+
+@pytest.mark.parametrize("name,pose,expected", [
+    ("near", (5, 6.4), True),        # gap 0.65
+    ("near", (5, 7.0), False),       # gap 1.25
+    ("far", (5, 7.5), True),         # gap 1.75
+    ("far", (5, 6.5), False),
+    ("in front of", (5, 6.2), True),
+    ("in front of", (5, 3.8), False),  # behind it
+    ("in front of", (7, 6.2), False),  # ahead, but beside the front axis
+    ("behind", (5, 3.8), True),
+    ("side of", (6.5, 5), True),
+    ("side of", (5, 6.2), False),
+    ("right of", (6.5, 5), True),    # right of B is +x when B faces +z
+    ("left of", (6.5, 5), False),
+    ("left of", (3.5, 5), True),
+    ("center aligned", (5.05, 7), True),
+    ("center aligned", (5.3, 7), False),
+])
+def test_relation_satisfaction(name, pose, expected):
+    assert rel(name, *pose)[0] is expected
+
+
+def test_face_to_and_around_depend_on_orientation():
+    assert rel("face to", 5, 7, rotation=180)[0] and not rel("face to", 5, 7, rotation=0)[0]
+    assert rel("around", 5, 6.0, rotation=180)[0]      # touching B's front, facing it
+    assert not rel("around", 5, 6.0, rotation=90)[0]   # close, but facing away
+    assert rel("face same as", 9, 9, rotation=30)[0] and not rel("face same as", 9, 9, rotation=90)[0]
+
+
+def test_energies_are_zero_when_met_and_grow_with_the_violation():
+    assert rel("near", 5, 6.0)[1] == 0
+    e1, e2 = rel("near", 5, 7.0)[1], rel("near", 5, 8.0)[1]
+    assert 0 < e1 < e2
+    assert rel("far", 5, 9)[1] == 0 < rel("far", 5, 6)[1]
+
+
+@pytest.mark.parametrize("x,z,rotation,expected", [
+    (2.0, 0.25, 0, True),     # back on the south wall, facing north
+    (2.0, 0.25, 180, False),  # touching the wall but facing it
+    (0.25, 2.0, 90, True),    # back on the west wall, facing east
+    (3.75, 2.0, 270, True),   # back on the east wall
+    (2.0, 2.0, 0, False),
+])
+def test_edge(x, z, rotation, expected):
+    _, ok = placement("edge", Poses.one(x, z, rotation, 1.0, 0.5), 4.0, 4.0)
+    assert bool(ok[0]) is expected
+
+
+def test_middle():
+    assert placement("middle", Poses.one(2, 2, 0, 1, 1), 4, 4)[1][0]
+    assert not placement("middle", Poses.one(0.8, 2, 0, 1, 1), 4, 4)[1][0]  # 0.3 m from the west wall

@@ -1,0 +1,60 @@
+import math
+
+import numpy as np
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from models.geometry import (Footprint, boxes, front, gap, gap_many, half_extents, inside_room, overlap_area,
+                             overlap_many, right)
+
+sizes = st.floats(0.05, 3.0)
+coords = st.floats(-5, 5)
+right_angles = st.sampled_from([0.0, 90.0, 180.0, 270.0])
+any_angle = st.floats(0, 360)
+
+
+def test_rotation_convention_of_interfaces_md():
+    assert np.allclose(front(0), (0, 1)) and np.allclose(front(90), (1, 0))
+    assert np.allclose(front(180), (0, -1)) and np.allclose(front(270), (-1, 0))
+    assert np.allclose(right(0), (1, 0))  # right is (cos r, -sin r)
+
+
+@given(sizes, sizes, any_angle)
+def test_footprint_area_is_width_times_depth(w, d, r):
+    assert math.isclose(Footprint(0, 0, w, d, r).polygon().area, w * d, rel_tol=1e-6)
+
+
+@given(sizes, sizes)
+def test_quarter_turn_swaps_extents(w, d):
+    ex, ez = half_extents(w, d, 90.0)
+    assert math.isclose(ex, d / 2, rel_tol=1e-9, abs_tol=1e-12) and math.isclose(ez, w / 2, rel_tol=1e-9, abs_tol=1e-12)
+
+
+@given(sizes, sizes, any_angle)
+def test_back_point_is_behind_the_centre(w, d, r):
+    f = Footprint(1, 2, w, d, r)
+    bx, bz = f.back_point()
+    fx, fz = front(r)
+    assert math.isclose((1 - bx) * fx + (2 - bz) * fz, d / 2, rel_tol=1e-6, abs_tol=1e-9)
+
+
+@settings(max_examples=200)
+@given(coords, coords, sizes, sizes, right_angles, coords, coords, sizes, sizes, right_angles)
+def test_vectorised_overlap_and_gap_match_shapely(x1, z1, w1, d1, r1, x2, z2, w2, d2, r2):
+    a, b = Footprint(x1, z1, w1, d1, r1), Footprint(x2, z2, w2, d2, r2)
+    ba, bb = boxes([x1], [z1], w1, d1, [r1]), boxes([x2], [z2], w2, d2, [r2])
+    assert math.isclose(overlap_many(ba, bb)[0, 0], overlap_area(a, b), abs_tol=1e-6)
+    assert math.isclose(gap_many(ba, bb)[0, 0], gap(a, b), abs_tol=1e-6)
+
+
+@given(coords, coords, sizes, sizes, any_angle, coords, coords, sizes, sizes, any_angle)
+def test_gap_is_zero_exactly_when_footprints_meet(x1, z1, w1, d1, r1, x2, z2, w2, d2, r2):
+    a, b = Footprint(x1, z1, w1, d1, r1), Footprint(x2, z2, w2, d2, r2)
+    assert (gap(a, b) <= 1e-9) == a.polygon().intersects(b.polygon())
+    assert math.isclose(overlap_area(a, b), overlap_area(b, a), abs_tol=1e-9)
+
+
+def test_inside_room():
+    assert inside_room(Footprint(0.5, 0.5, 1, 1), 4, 4)
+    assert not inside_room(Footprint(0.4, 0.5, 1, 1), 4, 4)
+    assert not inside_room(Footprint(2, 2, 1, 1, 45), 2.5, 2.5)

@@ -1,0 +1,59 @@
+import pytest
+
+from models.world import ROOM_TYPES, UnknownRoomType, catalogue, normalise_room_type
+
+
+@pytest.mark.parametrize("phrase,expected", [
+    ("fridge", "Fridge"), ("refrigerator", "Fridge"), ("counter", "CounterTop"), ("kitchen counter", "CounterTop"),
+    ("countertop", "CounterTop"), ("counter top", "CounterTop"), ("couch", "Sofa"), ("nightstand", "SideTable"),
+    ("desk lamp", "DeskLamp"), ("cell phone", "CellPhone"), ("remote", "RemoteControl"), ("sink", "SinkBasin"),
+])
+def test_synonyms_map_to_ai2thor_types(phrase, expected):
+    assert catalogue().lexicon[phrase] == (expected,)
+
+
+def test_the_light_means_a_lamp():
+    assert set(catalogue().lexicon["light"]) == {"DeskLamp", "FloorLamp"}
+
+
+def test_every_type_has_properties_and_floor_types_have_assets():
+    cat = catalogue()
+    assert len(cat.types) >= 118
+    for name, t in cat.types.items():
+        assert set(t.flags) >= {"pickupable", "receptacle", "openable", "isHeatSource", "isColdSource"}
+        if t.on_floor:
+            assert t.assets, name
+            assert all(min(a.size) > 0 for a in t.assets), name
+
+
+def test_physical_properties_come_from_ai2thor():
+    cat = catalogue()
+    assert cat["Fridge"].flags["isColdSource"] and cat["Fridge"].flags["openable"]
+    assert cat["Microwave"].flags["isHeatSource"] and cat["Bread"].pickupable
+    assert cat["Fridge"].open_swing > 0.3  # the door swing measured from the open-state bounding box
+    assert "Apple" in cat["Fridge"].contents
+
+
+def test_room_priors_are_measured_in_ithor():
+    cat = catalogue()
+    assert cat.room_presence("Fridge", "kitchen") == 1.0
+    assert cat.room_presence("Fridge", "bedroom") == 0.0
+    assert cat.room_presence("Bed", "bedroom") > 0.9
+    assert cat.room_presence("Toilet", "bathroom") > 0.9
+
+
+def test_fixture_parts_are_hosted_by_real_assets():
+    cat = catalogue()
+    for part in ("Cabinet", "StoveBurner", "SinkBasin", "Drawer", "Shelf"):
+        assert cat.host(part).assets, part
+
+
+@pytest.mark.parametrize("alias", ["living_room", "livingroom", "Living Room", "LIVING-ROOM"])
+def test_room_type_aliases(alias):
+    assert normalise_room_type(alias) == "living room"
+
+
+def test_nine_room_types_and_a_clear_error_otherwise():
+    assert len(ROOM_TYPES) == 9 and all(normalise_room_type(r) == r for r in ROOM_TYPES)
+    with pytest.raises(UnknownRoomType, match="unknown room type 'spaceship'"):
+        normalise_room_type("spaceship")
