@@ -1,9 +1,10 @@
 """Scores constraints on placed objects: for each, an energy (0 when fully met, growing with the
 violation) and a satisfied flag, exactly as the table of constraints.md defines them.
 
-Everything is vectorised over candidate poses of the constrained object A (arrays of length N) against
-one placed target B, so a placer scores all its candidates at once. Footprints are treated as
-axis-aligned boxes, which is exact for rotations that are multiples of 90 degrees.
+Everything is vectorised: A and B are arrays of poses that broadcast against each other (N candidates
+of A against one placed B, or one placed A against N candidates of B), so a placer scores all its
+candidates at once. Footprints are treated as axis-aligned boxes, which is exact for rotations that
+are multiples of 90 degrees.
 """
 
 from __future__ import annotations
@@ -12,7 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from models.geometry import boxes, gap_many
+from models.geometry import boxes
 
 EDGE_TOL = 0.05
 MIDDLE_MIN = 0.4
@@ -47,8 +48,12 @@ class Poses:
         return np.sin(r), np.cos(r)
 
 
-def _gap(a: Poses, b: Poses) -> np.ndarray:
-    return gap_many(a.boxes(), b.boxes())[:, 0]
+def box_gap(a: Poses, b: Poses) -> np.ndarray:
+    """Elementwise shortest distance between the boxes of A and B (broadcast)."""
+    ba, bb = a.boxes(), b.boxes()
+    dx = np.maximum(0, np.maximum(ba[..., 0] - bb[..., 2], bb[..., 0] - ba[..., 2]))
+    dz = np.maximum(0, np.maximum(ba[..., 1] - bb[..., 3], bb[..., 1] - ba[..., 3]))
+    return np.hypot(dx, dz)
 
 
 def _angle_between(ux, uz, vx, vz) -> np.ndarray:
@@ -60,8 +65,8 @@ def _angle_between(ux, uz, vx, vz) -> np.ndarray:
 
 def _frame(a: Poses, b: Poses) -> tuple[np.ndarray, np.ndarray]:
     """A's centre in B's frame: (ahead along front(B), lateral along right(B))."""
-    bx, bz, br = b.x[0], b.z[0], np.radians(b.rotation[0])
-    dx, dz = a.x - bx, a.z - bz
+    br = np.radians(b.rotation)
+    dx, dz = a.x - b.x, a.z - b.z
     ahead = dx * np.sin(br) + dz * np.cos(br)
     lateral = dx * np.cos(br) - dz * np.sin(br)
     return ahead, lateral
@@ -71,8 +76,11 @@ def _relu(v):
     return np.maximum(v, 0.0)
 
 
-def relation(name: str, a: Poses, b: Poses) -> tuple[np.ndarray, np.ndarray]:
-    """(energy, satisfied) of `A name B` for every pose of A."""
+def relation(name: str, a: Poses, b: Poses, gap: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """(energy, satisfied) of `A name B` for every pose; `gap` overrides the box gap (exact polygons)."""
+    def _gap(a, b):
+        return gap if gap is not None else box_gap(a, b)
+
     if name == "near":
         g = _gap(a, b)
         return _relu(g - NEAR_SOFT), g <= NEAR_MAX
@@ -98,17 +106,17 @@ def relation(name: str, a: Poses, b: Poses) -> tuple[np.ndarray, np.ndarray]:
         return energy, ok
     if name == "face to":
         fx, fz = a.fronts()
-        angle = _angle_between(fx, fz, b.x[0] - a.x, b.z[0] - a.z)
+        angle = _angle_between(fx, fz, b.x - a.x, b.z - a.z)
         return _relu(angle - FACE_MAX_DEG) / 90.0, angle <= FACE_MAX_DEG
     if name == "face same as":
-        diff = np.abs((a.rotation - b.rotation[0] + 180.0) % 360.0 - 180.0)
+        diff = np.abs((a.rotation - b.rotation + 180.0) % 360.0 - 180.0)
         return _relu(diff - FACE_MAX_DEG) / 90.0, diff <= FACE_MAX_DEG
     if name == "around":
         g = _gap(a, b)
         face_e, face_ok = relation("face to", a, b)
         return _relu(g - AROUND_MAX_GAP) + face_e, (g <= AROUND_MAX_GAP) & face_ok
     if name == "center aligned":
-        off = np.minimum(np.abs(a.x - b.x[0]), np.abs(a.z - b.z[0]))
+        off = np.minimum(np.abs(a.x - b.x), np.abs(a.z - b.z))
         return _relu(off - ALIGN_TOL), off <= ALIGN_TOL
     raise ValueError(f"unknown constraint {name!r}")
 
@@ -128,13 +136,13 @@ def wall_clearance(a: Poses, room_width: float, room_depth: float) -> np.ndarray
     return np.min(np.stack([b[:, 0], b[:, 1], room_width - b[:, 2], room_depth - b[:, 3]]), axis=0)
 
 
-def placement(name: str, a: Poses, room_width: float, room_depth: float) -> tuple[np.ndarray, np.ndarray]:
-    """(energy, satisfied) of the global placement `edge` or `middle`."""
+def placement(name: str, a: Poses, room_width: float, room_depth: float,
+              clearance: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """(energy, satisfied) of the global placement `edge` or `middle`; `clearance` overrides the box one."""
+    c = clearance if clearance is not None else wall_clearance(a, room_width, room_depth)
     if name == "edge":
         d = back_wall_distance(a, room_width, room_depth)
-        inside = wall_clearance(a, room_width, room_depth) >= -1e-6
-        return _relu(np.abs(d) - EDGE_TOL), (np.abs(d) <= EDGE_TOL + 1e-9) & inside
+        return _relu(np.abs(d) - EDGE_TOL), (np.abs(d) <= EDGE_TOL + 1e-9) & (c >= -1e-6)
     if name == "middle":
-        c = wall_clearance(a, room_width, room_depth)
         return _relu(MIDDLE_MIN - c), c >= MIDDLE_MIN - 1e-9
     raise ValueError(f"unknown placement {name!r}")

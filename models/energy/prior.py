@@ -1,0 +1,138 @@
+"""The relational data prior, learned from the 120 hand-designed iTHOR rooms.
+
+For every room type and ordered pair of floor-standing object types (A, B) it counts, over all
+instances of A in rooms that also hold a B: the gap from A to the nearest B (binned), and how A is
+turned relative to that B (same way, quarter turn, opposite); for every type, how often it touches a
+wall. E_prior of a pose is the normalised surprise -log p of its bin under these counts (Laplace
+smoothed), in [0, 1]; pairs never seen together have no prior (0).
+
+    python -m models.energy.prior    # rebuilds models/data/relation_prior.json (deterministic)
+"""
+
+from __future__ import annotations
+
+import gzip
+import json
+import math
+from collections import defaultdict
+from functools import cache
+from importlib import resources
+from pathlib import Path
+
+import numpy as np
+
+from models.world import catalogue
+
+GAP_BINS = (0.0, 0.1, 0.3, 0.6, 1.0, 1.5, 2.5, 4.0)  # left edges, metres; last bin open
+TURN_BINS = 3  # |relative yaw| near 0, 90 or 180 degrees
+WALL_TOUCH = 0.15
+ALPHA = 1.0
+POOLED = "*"
+OUT = Path(__file__).resolve().parent.parent / "data" / "relation_prior.json"
+
+
+def gap_bin(gap):
+    return np.clip(np.searchsorted(GAP_BINS, gap, side="right") - 1, 0, len(GAP_BINS) - 1)
+
+
+def turn_bin(rel_yaw):
+    d = np.abs((np.asarray(rel_yaw, float) + 180.0) % 360.0 - 180.0)
+    return np.where(d < 45, 0, np.where(d < 135, 1, 2))
+
+
+def _box(o) -> tuple[float, float, float, float]:
+    return (o["x"] - o["size"][0] / 2, o["z"] - o["size"][2] / 2, o["x"] + o["size"][0] / 2, o["z"] + o["size"][2] / 2)
+
+
+def _gap(a, b) -> float:
+    dx = max(0.0, a[0] - b[2], b[0] - a[2])
+    dz = max(0.0, a[1] - b[3], b[1] - a[3])
+    return math.hypot(dx, dz)
+
+
+def learn(scenes: list[dict], floor_types: set[str]) -> dict:
+    """Counts over the floor-standing objects (ProcTHOR's onFloor types) of every iTHOR room."""
+    pairs: dict[str, dict[str, list[int]]] = defaultdict(lambda: {"gap": [0] * len(GAP_BINS), "turn": [0] * TURN_BINS})
+    walls: dict[str, list[int]] = defaultdict(lambda: [0, 0])
+    for scene in scenes:
+        floor = next(o for o in scene["objects"] if o["type"] == "Floor")
+        fb = _box(floor)
+        standing = [o for o in scene["objects"] if o["type"] in floor_types and set(o["parents"]) <= {"Floor"}]
+        for a in standing:
+            ab = _box(a)
+            touch = min(ab[0] - fb[0], ab[1] - fb[1], fb[2] - ab[2], fb[3] - ab[3]) <= WALL_TOUCH
+            for room in (scene["room_type"], POOLED):
+                walls[f"{room}|{a['type']}"][0] += touch
+                walls[f"{room}|{a['type']}"][1] += 1
+            by_type: dict[str, list] = defaultdict(list)
+            for b in standing:
+                if b is not a:
+                    by_type[b["type"]].append(b)
+            for b_type, bs in by_type.items():
+                nearest = min(bs, key=lambda b: _gap(ab, _box(b)))
+                g = int(gap_bin(_gap(ab, _box(nearest))))
+                t = int(turn_bin(a["rotation"] - nearest["rotation"]))
+                for room in (scene["room_type"], POOLED):
+                    entry = pairs[f"{room}|{a['type']}|{b_type}"]
+                    entry["gap"][g] += 1
+                    entry["turn"][t] += 1
+    return {"gap_bins": list(GAP_BINS), "pairs": dict(sorted(pairs.items())), "walls": dict(sorted(walls.items()))}
+
+
+def _surprise(counts: list[int], index) -> np.ndarray:
+    """-log p(bin) / max possible, Laplace smoothed: 0 for the most typical bin's neighbourhood, 1 for unseen."""
+    c = np.asarray(counts, float) + ALPHA
+    p = c / c.sum()
+    worst = -math.log(ALPHA / c.sum())
+    best = -math.log(p.max())
+    return np.clip((-np.log(p[index]) - best) / max(worst - best, 1e-9), 0.0, 1.0)
+
+
+class RelationPrior:
+    def __init__(self, data: dict):
+        self.pairs = data["pairs"]
+        self.walls = data["walls"]
+
+    def _key(self, table: dict, room: str, *types: str) -> str | None:
+        for r in (room, POOLED):
+            key = "|".join((r, *types))
+            if key in table:
+                return key
+        return None
+
+    def pair_energy(self, room: str, a: str, b: str, gap, rel_yaw) -> np.ndarray:
+        """Normalised surprise of A's gap to and turn against B, in [0, 1] (broadcasts over arrays)."""
+        key = self._key(self.pairs, room, a, b)
+        if key is None:
+            return np.zeros(np.broadcast(np.asarray(gap), np.asarray(rel_yaw)).shape)
+        entry = self.pairs[key]
+        return 0.5 * (_surprise(entry["gap"], gap_bin(gap)) + _surprise(entry["turn"], turn_bin(rel_yaw)))
+
+    def wall_energy(self, room: str, a: str, touching) -> np.ndarray:
+        key = self._key(self.walls, room, a)
+        touching = np.asarray(touching, bool)
+        if key is None:
+            return np.zeros(touching.shape)
+        hits, total = self.walls[key]
+        return _surprise([total - hits, hits], touching.astype(int))
+
+
+@cache
+def relation_prior() -> RelationPrior:
+    return RelationPrior(json.loads(resources.files("models").joinpath("data/relation_prior.json").read_text()))
+
+
+def ithor_scenes() -> list[dict]:
+    raw = resources.files("models").joinpath("data/ithor_scenes.jsonl.gz").read_bytes()
+    return [json.loads(line) for line in gzip.decompress(raw).decode().splitlines() if line]
+
+
+def build() -> str:
+    cat = catalogue()
+    floor_types = {n for n, t in cat.types.items() if t.on_floor and not t.pickupable}
+    return json.dumps(learn(ithor_scenes(), floor_types), sort_keys=True, separators=(",", ":")) + "\n"
+
+
+if __name__ == "__main__":
+    OUT.write_text(build())
+    print(f"wrote {OUT}")

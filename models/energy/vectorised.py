@@ -1,0 +1,203 @@
+"""The energy of the layout `placed + one candidate`, for every candidate pose of the next object at once.
+
+Same terms and weights as `exact`, on axis-aligned boxes (exact for right-angle rotations) and numpy
+occupancy grids. What is constant over the candidates (the placed objects among themselves) is computed
+once; what the candidate changes is computed for all N candidates with broadcasting and integral images.
+
+Navigation is the one approximation: a candidate can make a target unreachable by covering its access
+strip or the doorway, and both are counted exactly; a candidate that cuts the free space in two
+elsewhere is not seen here (`exact` sees it). The placers re-check their chosen pose with `exact`.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from models.constraints.evaluate import Poses, box_gap, placement, relation, wall_clearance
+from models.energy import navigation as nav
+from models.energy.exact import exempt
+from models.energy.prior import WALL_TOUCH, relation_prior
+from models.energy.weights import ACCESS_DEPTH, AFF_BLOCKED, AFF_OUTSIDE, EPS, PRIOR_LAMBDA, ROBOT_RADIUS, WEIGHTS
+from models.geometry import boxes, overlap_many
+from models.placement.candidates import front_boxes
+from models.placement.problem import PlacementProblem
+from models.values import PlanObject
+
+OVERLAP_TOL = 1e-4
+
+
+class _Integral:
+    """Counts of true cells of a grid mask inside axis-aligned boxes, O(1) per box."""
+
+    def __init__(self, grid: nav.Grid, mask: np.ndarray):
+        self.grid = grid
+        self.table = np.zeros((mask.shape[0] + 1, mask.shape[1] + 1))
+        self.table[1:, 1:] = mask.cumsum(0).cumsum(1)
+
+    def count(self, b: np.ndarray) -> np.ndarray:
+        """b: (..., 4) boxes; cells whose centres lie inside."""
+        c = self.grid.cell
+        nx, nz = self.table.shape[0] - 1, self.table.shape[1] - 1
+        i0 = np.clip(np.ceil(b[..., 0] / c - 0.5 - 1e-9), 0, nx).astype(int)
+        i1 = np.clip(np.floor(b[..., 2] / c - 0.5 + 1e-9) + 1, 0, nx).astype(int)
+        j0 = np.clip(np.ceil(b[..., 1] / c - 0.5 - 1e-9), 0, nz).astype(int)
+        j1 = np.clip(np.floor(b[..., 3] / c - 0.5 + 1e-9) + 1, 0, nz).astype(int)
+        i1, j1 = np.maximum(i1, i0), np.maximum(j1, j0)
+        t = self.table
+        return t[i1, j1] - t[i0, j1] - t[i1, j0] + t[i0, j0]
+
+
+def _intersect(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    return np.stack([np.maximum(a[..., 0], b[..., 0]), np.maximum(a[..., 1], b[..., 1]),
+                     np.minimum(a[..., 2], b[..., 2]), np.minimum(a[..., 3], b[..., 3])], axis=-1)
+
+
+def _inflate(b: np.ndarray, r: float) -> np.ndarray:
+    return b + np.array([-r, -r, r, r])
+
+
+class CandidateEnergy:
+    """Energy terms of `placed + candidate` for N candidates of one object."""
+
+    def __init__(self, problem: PlacementProblem, placed: list):
+        """`placed`: objects with id, x, z, rotation, width, depth (PlacedObject or Placement-like)."""
+        self.problem = problem
+        self.room = problem.plan.room
+        self.types = {o.id: o.type for o in problem.plan.objects}
+        self.task = {o.id for o in problem.plan.objects if o.is_task}
+        self.placed = list(placed)
+        self.prior = relation_prior()
+        w, d = self.room.width, self.room.depth
+        self.poses = {p.id: Poses.one(p.x, p.z, p.rotation, p.width, p.depth) for p in self.placed}
+        self.bodies = np.array([boxes(p.x, p.z, p.width, p.depth, p.rotation) for p in self.placed]).reshape(-1, 4)
+        self.clear = {p.id: problem.clearance.get(p.id, 0.0) for p in self.placed}
+        self.zones = {p.id: front_boxes(p.x, p.z, p.rotation, p.width, p.depth, self.clear[p.id])
+                      for p in self.placed if self.clear[p.id] > 0}
+        self.room_box = np.array([0.0, 0.0, w, d])
+        self._constant_terms()
+        self.grid = nav.Grid(w, d)
+        blocked = nav.blocked_by_boxes(self.grid, self.bodies)
+        self.reach = nav.reachable_space(self.grid, blocked, self.room)
+        self.reach_count = _Integral(self.grid, self.reach)
+        self.door_boxes = [np.array(b, float) for b in nav.door_boxes(self.room)]
+
+    # ---- what the placed objects contribute whatever the candidate --------------------------------
+
+    def _constant_terms(self) -> None:
+        room, ids = self.room, [p.id for p in self.placed]
+        rel_sum, rel_n = 0.0, 0
+        for p in self.placed:
+            oc = self.problem.constraints.objects[p.id]
+            pose = self.poses[p.id]
+            e, _ = placement(oc.placement, pose, room.width, room.depth)
+            touching = wall_clearance(pose, room.width, room.depth) <= WALL_TOUCH
+            rel_sum += float(e[0] * (1 + PRIOR_LAMBDA * self.prior.wall_energy(room.type, self.types[p.id], touching)[0]))
+            rel_n += 1
+            for c in oc.relations:
+                if c.target in self.poses:
+                    rel_sum += float(self._rel(c.name, p.id, c.target, pose, self.poses[c.target])[0])
+                    rel_n += 1
+        self.rel_sum, self.rel_n = rel_sum, rel_n
+        ov = overlap_many(self.bodies, self.bodies) if len(self.bodies) else np.zeros((0, 0))
+        self.collision_sum = float((np.triu(ov, 1) ** 2).sum())
+        inside = overlap_many(self.bodies, self.room_box[None])[:, 0] if len(self.bodies) else np.zeros(0)
+        areas = (self.bodies[:, 2] - self.bodies[:, 0]) * (self.bodies[:, 3] - self.bodies[:, 1])
+        self.oob_sum = float(((1 - inside / (areas + EPS)) ** 2).sum())
+        aff_sum = 0.0
+        for oid, zone in self.zones.items():
+            aff_sum += AFF_OUTSIDE * self._outside(zone[None])[0]
+            for j, other in enumerate(ids):
+                if other != oid and not exempt(self.problem.constraints, oid, other):
+                    aff_sum += AFF_BLOCKED * (overlap_many(zone[None], self.bodies[j:j + 1])[0, 0] > OVERLAP_TOL)
+        self.aff_sum = aff_sum
+
+    def _rel(self, name, a_id, b_id, a: Poses, b: Poses) -> np.ndarray:
+        e, _ = relation(name, a, b)
+        g = box_gap(a, b)
+        pe = self.prior.pair_energy(self.room.type, self.types[a_id], self.types[b_id], g, a.rotation - b.rotation)
+        return e * (1 + PRIOR_LAMBDA * pe)
+
+    def _outside(self, zones: np.ndarray) -> np.ndarray:
+        area = (zones[:, 2] - zones[:, 0]) * (zones[:, 3] - zones[:, 1])
+        return (area - overlap_many(zones, self.room_box[None])[:, 0]) > OVERLAP_TOL
+
+    # ---- per candidate -----------------------------------------------------------------------------
+
+    def score(self, obj: PlanObject, cands: np.ndarray) -> dict[str, np.ndarray]:
+        """Energy terms and weighted total for every candidate (N, 3: x, z, rotation)."""
+        room = self.room
+        x, z, rot = cands[:, 0], cands[:, 1], cands[:, 2]
+        poses = Poses(x, z, rot, obj.size.x, obj.size.z)
+        body = boxes(x, z, obj.size.x, obj.size.z, rot)
+        n = len(cands)
+
+        # relational: the candidate's own placement and relations, and placed objects' relations to it
+        oc = self.problem.constraints.objects[obj.id]
+        e, _ = placement(oc.placement, poses, room.width, room.depth)
+        touching = wall_clearance(poses, room.width, room.depth) <= WALL_TOUCH
+        rel_sum = self.rel_sum + e * (1 + PRIOR_LAMBDA * self.prior.wall_energy(room.type, obj.type, touching))
+        rel_n = self.rel_n + 1
+        for c in oc.relations:
+            if c.target in self.poses:
+                rel_sum = rel_sum + self._rel(c.name, obj.id, c.target, poses, self.poses[c.target])
+                rel_n += 1
+        for p in self.placed:
+            for c in self.problem.constraints.objects[p.id].relations:
+                if c.target == obj.id:
+                    rel_sum = rel_sum + self._rel(c.name, p.id, obj.id, self.poses[p.id], poses)
+                    rel_n += 1
+        rel = np.log1p(rel_sum / rel_n)
+
+        # collision and out-of-bounds
+        ov = overlap_many(body, self.bodies) if len(self.bodies) else np.zeros((n, 0))
+        collision = np.log1p(self.collision_sum + (ov ** 2).sum(axis=1))
+        area = (body[:, 2] - body[:, 0]) * (body[:, 3] - body[:, 1])
+        inside = overlap_many(body, self.room_box[None])[:, 0]
+        oob = np.log1p(self.oob_sum + (1 - inside / (area + EPS)) ** 2)
+
+        # affordance: placed objects whose clearance the candidate blocks, and the candidate's own
+        aff_sum = np.full(n, self.aff_sum)
+        functional = len(self.zones)
+        for oid, zone in self.zones.items():
+            if not exempt(self.problem.constraints, oid, obj.id):
+                aff_sum += AFF_BLOCKED * (overlap_many(body, zone[None])[:, 0] > OVERLAP_TOL)
+        depth = self.problem.clearance.get(obj.id, 0.0)
+        if depth > 0:
+            functional += 1
+            zone = front_boxes(x, z, rot, obj.size.x, obj.size.z, depth)
+            aff_sum += AFF_OUTSIDE * self._outside(zone)
+            if len(self.bodies):
+                free = np.array([not exempt(self.problem.constraints, obj.id, p.id) for p in self.placed])
+                aff_sum += AFF_BLOCKED * ((overlap_many(zone, self.bodies) > OVERLAP_TOL) & free).sum(axis=1)
+        aff = aff_sum / max(functional, 1)
+
+        nav_e = self._navigation(obj, cands, body)
+        terms = {"rel": rel, "collision": collision, "oob": oob, "nav": nav_e, "aff": aff}
+        terms["total"] = sum(WEIGHTS[k] * terms[k] for k in WEIGHTS)
+        return terms
+
+    def _reachable_strip(self, strip: np.ndarray, cut: np.ndarray) -> np.ndarray:
+        """Does `strip` (4,) or (N, 4) hold a reachable cell outside the candidate's inflated body `cut` (N, 4)?"""
+        total = self.reach_count.count(strip)
+        return (total - self.reach_count.count(_intersect(np.broadcast_to(strip, cut.shape), cut))) > 0
+
+    def _navigation(self, obj: PlanObject, cands: np.ndarray, body: np.ndarray) -> np.ndarray:
+        targets = [p for p in self.placed if p.id in self.task]
+        is_target = obj.id in self.task
+        n_targets = len(targets) + is_target
+        if n_targets == 0:
+            return np.zeros(len(cands))
+        cut = _inflate(body, ROBOT_RADIUS)
+        door_open = np.zeros(len(cands), bool)
+        for db in self.door_boxes:
+            door_open |= self._reachable_strip(db, cut)
+        reached = np.zeros(len(cands))
+        for p in targets:
+            strip = front_boxes(p.x, p.z, p.rotation, p.width, p.depth, ACCESS_DEPTH)
+            reached += self._reachable_strip(strip, cut)
+        if is_target:
+            x, z, rot = cands[:, 0], cands[:, 1], cands[:, 2]
+            strip = front_boxes(x, z, rot, obj.size.x, obj.size.z, ACCESS_DEPTH)
+            reached += self._reachable_strip(strip, cut)
+        rho = np.where(door_open, reached / n_targets, 0.0)
+        return (1 - rho) ** 2

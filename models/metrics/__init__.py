@@ -1,0 +1,5 @@
+"""The paper's placement metrics, computed on a plan and its layout."""
+
+from models.metrics.placement import SceneMetrics, scene_metrics
+
+__all__ = ["SceneMetrics", "scene_metrics"]
