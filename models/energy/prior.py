@@ -55,8 +55,10 @@ def learn(scenes: list[dict], floor_types: set[str]) -> dict:
     pairs: dict[str, dict[str, list[int]]] = defaultdict(lambda: {"gap": [0] * len(GAP_BINS), "turn": [0] * TURN_BINS})
     walls: dict[str, list[int]] = defaultdict(lambda: [0, 0])
     for scene in scenes:
-        floor = next(o for o in scene["objects"] if o["type"] == "Floor")
-        fb = _box(floor)
+        # the walls: the extent of everything in the room but the floor slab (which runs under them);
+        # windows, light switches and paintings sit on the walls, so this is where the walls are
+        others = [_box(o) for o in scene["objects"] if o["type"] != "Floor"]
+        fb = (min(b[0] for b in others), min(b[1] for b in others), max(b[2] for b in others), max(b[3] for b in others))
         standing = [o for o in scene["objects"] if o["type"] in floor_types and set(o["parents"]) <= {"Floor"}]
         for a in standing:
             ab = _box(a)
