@@ -9,6 +9,9 @@ GLOBALS: tuple[str, ...] = ("edge", "middle")
 RELATIONS: tuple[str, ...] = ("near", "far", "in front of", "behind", "side of", "left of", "right of",
                               "around", "face to", "face same as", "center aligned")
 
+# Relations whose point is to stand in the target's front zone: exempt from front-clearance rules.
+FRONT_RELATIONS = {"in front of", "around", "behind", "side of", "left of", "right of"}
+
 # Phrases real LLM output uses for a vocabulary name (read with a warning, like any misspelling).
 ALIASES: dict[str, str] = {
     "next to": "near", "close to": "near", "beside": "side of", "by": "near", "adjacent to": "near",
@@ -52,6 +55,11 @@ class ConstraintSet:
 
     def count(self) -> int:
         return len(self.objects) + len(self.relations())
+
+    def tied(self, a: str, b: str) -> bool:
+        """Is one of a, b asked to stand in the other's front zone (a chair at a desk)?"""
+        return any(c.target == b and c.name in FRONT_RELATIONS for c in self.objects[a].relations) or \
+            any(c.target == a and c.name in FRONT_RELATIONS for c in self.objects[b].relations)
 
 
 def resolve_name(raw: str, vocabulary: tuple[str, ...]) -> tuple[str | None, bool]:

@@ -8,13 +8,11 @@ from dataclasses import dataclass
 import numpy as np
 from shapely.geometry import box as shapely_box
 
-from models.constraints import ConstraintSet
-from models.constraints.evaluate import Poses, back_wall_distance, placement, relation
+from models.constraints.evaluate import Poses, placement, relation
 from models.energy import navigation as nav
 from models.energy.prior import WALL_TOUCH, relation_prior
 from models.energy.weights import AFF_BLOCKED, AFF_OUTSIDE, EPS, PRIOR_LAMBDA, WEIGHTS
 from models.geometry import Footprint, gap, wall_clearance
-from models.placement.candidates import FRONT_RELATIONS
 from models.placement.problem import PlacementProblem
 from models.values import ConstraintPlan, Placement
 
@@ -35,13 +33,6 @@ class EnergyTerms:
 
     def as_dict(self) -> dict[str, float]:
         return {**{k: getattr(self, k) for k in WEIGHTS}, "total": self.total}
-
-
-def exempt(constraints: ConstraintSet, a: str, b: str) -> bool:
-    """A chair at a desk stands in the desk's clearance on purpose: pairs tied by a front relation."""
-    objs = constraints.objects
-    return any(c.target == b and c.name in FRONT_RELATIONS for c in objs[a].relations) or \
-        any(c.target == a and c.name in FRONT_RELATIONS for c in objs[b].relations)
 
 
 def layout_energy(plan: ConstraintPlan, placements: list[Placement], problem: PlacementProblem | None = None
@@ -91,7 +82,7 @@ def layout_energy(plan: ConstraintPlan, placements: list[Placement], problem: Pl
         functional += 1
         zone = fps[oid].front_zone(depth).polygon()
         aff_sum += AFF_OUTSIDE * (not zone.difference(room_poly).area <= OVERLAP_TOL)
-        aff_sum += AFF_BLOCKED * sum(1 for other in ids if other != oid and not exempt(problem.constraints, oid, other)
+        aff_sum += AFF_BLOCKED * sum(1 for other in ids if other != oid and not problem.constraints.tied(oid, other)
                                      and zone.intersection(polys[other]).area > OVERLAP_TOL)
     aff = aff_sum / max(functional, 1)
 
@@ -107,4 +98,4 @@ def layout_energy(plan: ConstraintPlan, placements: list[Placement], problem: Pl
     return EnergyTerms(rel=rel, collision=collision, oob=oob, nav=nav_e, aff=aff)
 
 
-__all__ = ["EnergyTerms", "back_wall_distance", "exempt", "layout_energy"]
+__all__ = ["EnergyTerms", "layout_energy"]

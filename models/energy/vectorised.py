@@ -15,7 +15,6 @@ import numpy as np
 
 from models.constraints.evaluate import Poses, box_gap, placement, relation, wall_clearance
 from models.energy import navigation as nav
-from models.energy.exact import exempt
 from models.energy.prior import WALL_TOUCH, relation_prior
 from models.energy.weights import ACCESS_DEPTH, AFF_BLOCKED, AFF_OUTSIDE, EPS, PRIOR_LAMBDA, ROBOT_RADIUS, WEIGHTS
 from models.geometry import boxes, overlap_many
@@ -107,7 +106,7 @@ class CandidateEnergy:
         for oid, zone in self.zones.items():
             aff_sum += AFF_OUTSIDE * self._outside(zone[None])[0]
             for j, other in enumerate(ids):
-                if other != oid and not exempt(self.problem.constraints, oid, other):
+                if other != oid and not self.problem.constraints.tied(oid, other):
                     aff_sum += AFF_BLOCKED * (overlap_many(zone[None], self.bodies[j:j + 1])[0, 0] > OVERLAP_TOL)
         self.aff_sum = aff_sum
 
@@ -159,7 +158,7 @@ class CandidateEnergy:
         aff_sum = np.full(n, self.aff_sum)
         functional = len(self.zones)
         for oid, zone in self.zones.items():
-            if not exempt(self.problem.constraints, oid, obj.id):
+            if not self.problem.constraints.tied(oid, obj.id):
                 aff_sum += AFF_BLOCKED * (overlap_many(body, zone[None])[:, 0] > OVERLAP_TOL)
         depth = self.problem.clearance.get(obj.id, 0.0)
         if depth > 0:
@@ -167,7 +166,7 @@ class CandidateEnergy:
             zone = front_boxes(x, z, rot, obj.size.x, obj.size.z, depth)
             aff_sum += AFF_OUTSIDE * self._outside(zone)
             if len(self.bodies):
-                free = np.array([not exempt(self.problem.constraints, obj.id, p.id) for p in self.placed])
+                free = np.array([not self.problem.constraints.tied(obj.id, p.id) for p in self.placed])
                 aff_sum += AFF_BLOCKED * ((overlap_many(zone, self.bodies) > OVERLAP_TOL) & free).sum(axis=1)
         aff = aff_sum / max(functional, 1)
 

@@ -44,7 +44,17 @@ def _dfs() -> Solver:
     return DFSSolver()
 
 
-SOLVERS: dict[str, Callable[[], Solver]] = {"dfs": _dfs}
+def _milp() -> Solver:
+    from models.placement.milp import MILPSolver
+    return MILPSolver()
+
+
+def _z3() -> Solver:
+    from models.placement.smt import Z3Solver
+    return Z3Solver()
+
+
+SOLVERS: dict[str, Callable[[], Solver]] = {"dfs": _dfs, "milp": _milp, "z3": _z3}
 DEFAULT_SOLVER = "dfs"
 
 

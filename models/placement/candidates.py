@@ -18,8 +18,6 @@ from models.values import PlanObject
 
 ROTATIONS = (0.0, 90.0, 180.0, 270.0)
 OVERLAP_TOL = 1e-4  # m^2: touching is allowed, overlapping is not
-# Relations whose whole point is to stand in the target's front zone (a chair at a desk).
-FRONT_RELATIONS = {"in front of", "around", "behind", "side of", "left of", "right of"}
 GLOBAL_WEIGHT = 2.0
 ENERGY_WEIGHT = 0.5
 
@@ -83,12 +81,6 @@ class CandidateScorer:
         front = front_boxes(x, z, rotation, obj.size.x, obj.size.z, clearance) if clearance > 0 else None
         return PlacedObject(obj.id, x, z, rotation, obj.size.x, obj.size.z, body, front)
 
-    def related(self, a: str, b: str) -> bool:
-        """Are a and b tied by a relation that puts one in the other's front zone?"""
-        cs = self.problem.constraints.objects
-        return any(c.target == b and c.name in FRONT_RELATIONS for c in cs[a].relations) or \
-            any(c.target == a and c.name in FRONT_RELATIONS for c in cs[b].relations)
-
     def evaluate(self, obj: PlanObject, placed: list[PlacedObject], strict: bool = True
                  ) -> tuple[np.ndarray, np.ndarray, dict[str, np.ndarray]]:
         """(candidates, scores, energy terms) with -inf scores for poses that fail a hard filter."""
@@ -104,7 +96,7 @@ class CandidateScorer:
             ok &= overlap_many(body, self.door_zones).max(axis=1) <= OVERLAP_TOL
         if strict:
             clearance = self.problem.clearance.get(obj.id, 0.0)
-            free = [p for p in placed if not self.related(obj.id, p.id)]
+            free = [p for p in placed if not self.problem.constraints.tied(obj.id, p.id)]
             if clearance > 0:
                 front = front_boxes(x, z, rot, obj.size.x, obj.size.z, clearance)
                 inside = (front[:, 0] >= -1e-6) & (front[:, 1] >= -1e-6) & \

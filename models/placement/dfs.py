@@ -17,7 +17,8 @@ import numpy as np
 from models.placement.base import PlacementStep, StepObserver
 from models.placement.candidates import CandidateScorer, PlacedObject
 from models.placement.problem import PlacementProblem
-from models.values import ConstraintPlan, Layout, Placement, Provenance, Timing, Unplaced
+from models.placement.result import make_layout
+from models.values import ConstraintPlan, Layout
 
 BRANCH = 3
 MIN_SPREAD = 0.3  # branches differ by at least this much (m), or by rotation
@@ -86,22 +87,6 @@ class DFSSolver:
         if observer is not None:
             for step in best["steps"]:
                 observer(step)
-        return self._layout(plan, problem, best, seed, time.perf_counter() - start)
-
-    def _layout(self, plan: ConstraintPlan, problem: PlacementProblem, best: dict, seed: int,
-                elapsed: float) -> Layout:
-        by_id = {p.id: p for p in best["placed"]}
-        placements = [Placement(id=o.id, type=o.type, x=round(by_id[o.id].x, 4), z=round(by_id[o.id].z, 4),
-                                rotation=by_id[o.id].rotation, size=o.size)
-                      for o in plan.objects if o.id in by_id]
-        reasons = {u.id: u.reason for u in problem.impossible}
-        reasons.update(best["failed"])
-        for o in problem.order:  # objects the search never reached before its time ran out
-            if o.id not in by_id:
-                reasons.setdefault(o.id, "time budget ran out before it was placed")
-        unplaced = [Unplaced(id=o.id, reason=reasons[o.id]) for o in plan.objects if o.id not in by_id]
-        n = max(len(plan.objects), 1)
-        return Layout(plan_id=plan.id, solver=self.name, seed=seed, placements=placements, unplaced=unplaced,
-                      warnings=list(problem.warnings),
-                      timing=Timing(total_s=round(elapsed, 4), per_object_s=round(elapsed / n, 5)),
-                      provenance=Provenance(stage="layout", method=self.name, seed=seed))
+        poses = {p.id: (p.x, p.z, p.rotation) for p in best["placed"]}
+        return make_layout(problem, poses, best["failed"], self.name, seed, time.perf_counter() - start,
+                           default_reason="time budget ran out before it was placed")
