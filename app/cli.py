@@ -124,6 +124,15 @@ def cmd_demo(args) -> int:
     return 0
 
 
+def cmd_data(args) -> int:
+    from models.datasets import DATASETS
+    from models.datasets.constraint_sets import write_dataset
+    for name in DATASETS:
+        path, digest = write_dataset(name)
+        print(f"{path}  sha256 {digest}")
+    return 0
+
+
 def cmd_bench(args) -> int:
     from app.bench import run_benchmark
     return run_benchmark(args.what, args)
@@ -164,11 +173,21 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--out", default="out/demo", metavar="DIR")
     p.set_defaults(run=cmd_demo)
 
-    p = sub.add_parser("bench", help="benchmarks that print figures: parser accuracy, generate speed")
-    p.add_argument("what", choices=["parser", "generate"])
-    p.add_argument("--n", type=int, default=30, help="instructions to time (generate)")
+    p = sub.add_parser("bench", help="benchmarks that print figures: parser, generate, placement, energy")
+    p.add_argument("what", choices=["parser", "generate", "placement", "energy"])
+    p.add_argument("--n", type=int, default=30, help="instructions (generate) or plans (placement) to run")
     p.add_argument("--split", default="valid_unseen", help="ALFRED split to score (parser)")
+    p.add_argument("--dataset", default="seen", choices=["seen", "unseen_a", "unseen_b"],
+                   help="placement: which constraint dataset")
+    p.add_argument("--solvers", default="dfs,milp,z3", help="placement: comma-separated solver names")
+    p.add_argument("--seeds", type=int, default=5, help="placement: seeds per plan")
+    p.add_argument("--budget", type=float, default=None, help="placement: time budget per plan (s)")
+    p.add_argument("--out", default=None, help="placement: folder for results and plots")
     p.set_defaults(run=cmd_bench)
+
+    p = sub.add_parser("data", help="rebuild the bundled constraint datasets (deterministic)")
+    p.add_argument("what", choices=["build"])
+    p.set_defaults(run=cmd_data)
     return ap
 
 

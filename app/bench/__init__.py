@@ -8,6 +8,10 @@ def run_benchmark(what: str, args) -> int:
         from app.bench.parser import main
     elif what == "generate":
         from app.bench.generate import main
+    elif what == "placement":
+        from app.bench.placement import main
+    elif what == "energy":
+        from app.bench.energy import main
     else:
         raise ValueError(f"unknown benchmark {what!r}")
     return main(args)

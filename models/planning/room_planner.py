@@ -126,25 +126,21 @@ class RoomPlanner:
         return out
 
     def _sample_context(self, room_type: str, rng: random.Random, present: set[str]) -> list[str]:
+        """A count drawn from [min_context, max_context], filled with types drawn by room frequency.
+
+        Types that occur once per room (a fridge) are drawn at most once; others may repeat.
+        """
         s = self.settings
         weights = self._candidates(room_type)
-        chosen = []
-        for name in sorted(weights):
-            if name in present and not self.cat[name].placement.get("multiple_per_room"):
-                continue
-            if rng.random() < weights[name]:
-                count = 1
-                if self.cat[name].placement.get("multiple_per_room"):
-                    count = max(1, min(3, round(self.cat.room_mean_count(name, room_type))))
-                chosen += [name] * count
-        rng.shuffle(chosen)
-        chosen.sort(key=lambda n: -weights[n])
-        chosen = chosen[:s.max_context]
-        for name in sorted(weights, key=lambda n: -weights[n]):
-            if len(chosen) >= s.min_context:
+        target = rng.randint(s.min_context, s.max_context)
+        chosen: list[str] = []
+        names = sorted(weights)
+        while len(chosen) < target:
+            options = [n for n in names if self.cat[n].placement.get("multiple_per_room")
+                       or (n not in chosen and n not in present)]
+            if not options:
                 break
-            if name not in chosen and name not in present:
-                chosen.append(name)
+            chosen.append(rng.choices(options, weights=[weights[n] for n in options])[0])
         return chosen
 
     def _group_members(self, root: str, room_type: str, rng: random.Random) -> list[str]:

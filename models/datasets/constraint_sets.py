@@ -1,0 +1,129 @@
+"""Constraint datasets built from ALFRED instructions and the room planner (no LLM can run here at scale).
+
+- `seen`     ALFRED train instructions x the nine room types (6,102 plans, 5,200 train / 902
+             validation); rooms of the usual sizes, 3-14 context objects, clean Holodeck text.
+- `unseen_a` ALFRED valid_unseen instructions, one room type each (518 plans); smaller rooms, more
+             objects, denser constraints, and LLM habits: renamed and misspelled constraints, ids
+             pointing at missing objects.
+- `unseen_b` ALFRED valid_seen instructions, two room types each (938 plans); larger rooms, sparser
+             constraints, other habits: respelled ids, renamed globals, self-references, lost lines.
+
+Deterministic for the fixed seed: `h3ds data build` rewrites `models/data/datasets/*.jsonl.gz`, and a
+test checks the stored files against a rebuild.
+"""
+
+from __future__ import annotations
+
+import gzip
+import hashlib
+import json
+import random
+from dataclasses import dataclass
+from importlib import resources
+from pathlib import Path
+
+from models.datasets.llm_style import Habits, restyle
+from models.language import InstructionError, RuleParser
+from models.language.alfred import load_annotations
+from models.planning import ConstraintWriter, RoomPlanner, RoomPlannerSettings
+from models.values import ConstraintPlan
+from models.world import ROOM_TYPES
+
+SEED = 20260101
+OUT = Path(__file__).resolve().parent.parent / "data" / "datasets"
+
+
+@dataclass(frozen=True)
+class Recipe:
+    split: str  # ALFRED split the instructions come from
+    n_instructions: int
+    rooms_per_instruction: int
+    settings: RoomPlannerSettings
+    habits: Habits
+    n_train: int = 0
+
+
+DATASETS: dict[str, Recipe] = {
+    "seen": Recipe("train", 678, 9, RoomPlannerSettings(min_context=3, max_context=14, surface_items=0.5),
+                   Habits(), n_train=5200),
+    "unseen_a": Recipe("valid_unseen", 518, 1, RoomPlannerSettings(min_context=5, max_context=16, size_scale=0.85),
+                       Habits(rename=0.25, misspell=0.1, missing_target=0.06, extra_relation=0.35)),
+    "unseen_b": Recipe("valid_seen", 469, 2, RoomPlannerSettings(min_context=2, max_context=10, size_scale=1.2,
+                                                                 group_chance=0.5),
+                       Habits(rename=0.3, id_respell=0.15, self_target=0.05, drop_line=0.08, drop_relation=0.5)),
+}
+
+
+@dataclass(frozen=True)
+class PlanRecord:
+    split: str  # train / validation (seen) or test (unseen sets)
+    instruction: str
+    plan: ConstraintPlan
+
+
+def _rows(recipe: Recipe, parser: RuleParser, rng: random.Random):
+    rows = list(load_annotations(recipe.split))
+    rng.shuffle(rows)
+    taken = 0
+    for row in rows:
+        if taken == recipe.n_instructions:
+            break
+        try:
+            graph = parser.parse(row.instruction)
+        except InstructionError:
+            continue
+        taken += 1
+        yield row.instruction, graph
+
+
+def build_dataset(name: str) -> list[PlanRecord]:
+    recipe = DATASETS[name]
+    rng = random.Random(f"{SEED}-{name}")
+    parser, planner, writer = RuleParser(), RoomPlanner(recipe.settings), ConstraintWriter()
+    records = []
+    for n_instr, (instruction, graph) in enumerate(_rows(recipe, parser, rng)):
+        rooms = ROOM_TYPES if recipe.rooms_per_instruction == len(ROOM_TYPES) else \
+            [ROOM_TYPES[(n_instr + k * 4) % len(ROOM_TYPES)] for k in range(recipe.rooms_per_instruction)]
+        for room in rooms:
+            pid = f"{name}-{len(records):05d}"
+            room_plan = planner.plan(graph.model_copy(update={"room_type": room}), seed=rng.randrange(2**31),
+                                     plan_id=pid)
+            plan = writer.write(room_plan)
+            text = restyle(plan.constraints, [o.id for o in plan.objects], rng, recipe.habits)
+            plan = plan.model_copy(update={"constraints": text})
+            records.append(PlanRecord("", instruction, plan))
+    order = list(range(len(records)))
+    random.Random(f"{SEED}-{name}-split").shuffle(order)
+    train = set(order[:recipe.n_train])
+    default = "test" if recipe.n_train == 0 else "validation"
+    return [PlanRecord("train" if i in train else default, r.instruction, r.plan) for i, r in enumerate(records)]
+
+
+def encode(records: list[PlanRecord]) -> bytes:
+    lines = [json.dumps({"split": r.split, "instruction": r.instruction,
+                         "plan": r.plan.model_dump(mode="json", exclude_none=True)}, sort_keys=True)
+             for r in records]
+    return gzip.compress(("\n".join(lines) + "\n").encode(), mtime=0)
+
+
+def dataset_path(name: str) -> Path:
+    return OUT / f"{name}.jsonl.gz"
+
+
+def write_dataset(name: str) -> tuple[Path, str]:
+    OUT.mkdir(parents=True, exist_ok=True)
+    data = encode(build_dataset(name))
+    dataset_path(name).write_bytes(data)
+    return dataset_path(name), hashlib.sha256(gzip.decompress(data)).hexdigest()
+
+
+def load_dataset(name: str, split: str | None = None) -> list[PlanRecord]:
+    if name not in DATASETS:
+        raise ValueError(f"unknown dataset {name!r}; available: {', '.join(DATASETS)}")
+    raw = resources.files("models").joinpath(f"data/datasets/{name}.jsonl.gz").read_bytes()
+    out = []
+    for line in gzip.decompress(raw).decode().splitlines():
+        row = json.loads(line)
+        if split is None or row["split"] == split:
+            out.append(PlanRecord(row["split"], row["instruction"], ConstraintPlan.model_validate(row["plan"])))
+    return out

@@ -1,0 +1,77 @@
+"""The three baselines behind one interface: valid layouts, and no crash on malformed plans."""
+
+import itertools
+
+import pytest
+
+from app.cli import main
+from models.geometry import Footprint, inside_room, overlap_area
+from models.metrics import scene_metrics
+from models.placement import get_solver
+from models.values import ConstraintPlan
+
+SOLVERS = ["dfs", "milp", "z3"]
+ROOM = {"type": "kitchen", "width": 4.2, "depth": 5.0, "doors": [{"wall": "south", "center": 1.1, "width": 0.9}]}
+
+
+def plan(objects, constraints=""):
+    return ConstraintPlan.model_validate({"id": "s", "room": ROOM, "constraints": constraints, "objects": [
+        {"id": oid, "type": t, "size": {"x": w, "y": 1, "z": d}, "role": role} for oid, t, w, d, role in objects]})
+
+
+KITCHEN = [("fridge-0", "Fridge", 0.75, 0.7, "inference"), ("countertop-0", "CounterTop", 2.4, 0.65, "anchor"),
+           ("diningtable-0", "DiningTable", 1.2, 0.9, "context"), ("chair-0", "Chair", 0.5, 0.5, "context"),
+           ("chair-1", "Chair", 0.5, 0.5, "context"), ("garbagecan-0", "GarbageCan", 0.4, 0.35, "context")]
+KITCHEN_TEXT = ("fridge-0 | edge | near, countertop-0\ncountertop-0 | edge\ndiningtable-0 | middle\n"
+                "chair-0 | middle | around, diningtable-0\nchair-1 | middle | around, diningtable-0\n"
+                "garbagecan-0 | edge | near, countertop-0")
+
+
+def check(p, layout):
+    fps = [Footprint(q.x, q.z, q.size.x, q.size.z, q.rotation) for q in layout.placements]
+    assert {o.id for o in p.objects} == {q.id for q in layout.placements} | {u.id for u in layout.unplaced}
+    assert len(layout.placements) + len(layout.unplaced) == len(p.objects)
+    assert all(inside_room(f, p.room.width, p.room.depth, tol=1e-3) for f in fps)
+    assert all(overlap_area(a, b) < 1e-3 for a, b in itertools.combinations(fps, 2))
+    assert all(u.reason for u in layout.unplaced)
+
+
+@pytest.mark.parametrize("solver", SOLVERS)
+def test_solver_places_a_kitchen_and_meets_most_constraints(solver):
+    p = plan(KITCHEN, KITCHEN_TEXT)
+    layout = get_solver(solver).solve(p, seed=0, time_budget_s=5)
+    check(p, layout)
+    m = scene_metrics(p, layout)
+    assert layout.solver == solver and m.cnt == 1.0 and m.sr == 1.0
+    assert m.constraint_satisfaction >= 0.7
+
+
+MALFORMED = {
+    "too large": ([("bed-0", "Bed", 6.0, 6.0, "context"), ("chair-0", "Chair", 0.5, 0.5, "anchor")], ""),
+    "cycle": ([("a-0", "Chair", 0.5, 0.5, "context"), ("b-0", "Chair", 0.5, 0.5, "context")],
+              "a-0 | middle | near, b-0 | far, b-0\nb-0 | middle | near, a-0 | left of, a-0"),
+    "unknown names and ids": ([("a-0", "Chair", 0.5, 0.5, "context"), ("b-0", "Sofa", 2.0, 0.9, "context")],
+                              "a-0 | hovering | levitate, b-0 | near, ghost-1\nghost-2 | edge\nb-0 | edge | near, b-0"),
+    "unknown type": ([("x-0", "Spaceship", 1.0, 1.0, "context")], "x-0 | middle"),
+}
+
+
+@pytest.mark.parametrize("solver", SOLVERS)
+@pytest.mark.parametrize("case", sorted(MALFORMED))
+def test_malformed_plans_never_crash(solver, case):
+    objects, text = MALFORMED[case]
+    p = plan(objects, text)
+    layout = get_solver(solver).solve(p, seed=1, time_budget_s=2)
+    check(p, layout)
+    if case == "too large":
+        assert [u.id for u in layout.unplaced] == ["bed-0"] and "larger than the room" in layout.unplaced[0].reason
+    if case == "unknown names and ids":
+        assert len(layout.warnings) >= 4
+
+
+@pytest.mark.parametrize("solver", ["milp", "z3"])
+def test_place_command_runs_every_solver(tmp_path, capsys, solver):
+    path = tmp_path / "plan.json"
+    path.write_text(plan(KITCHEN, KITCHEN_TEXT).model_dump_json())
+    assert main(["place", str(path), "--solver", solver, "--out", str(tmp_path / "layout.json")]) == 0
+    assert f'"solver": "{solver}"' in (tmp_path / "layout.json").read_text()
