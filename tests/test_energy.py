@@ -87,19 +87,22 @@ class _P:
 
 @pytest.mark.parametrize("seed", range(6))
 def test_vectorised_energy_agrees_with_exact(pipeline, seed):
-    """All terms but navigation agree to 1e-6; navigation agrees on at least 90% of candidates (the
-    vectorised one does not see a candidate that cuts the free space away from the door)."""
+    """Tolerance 1e-6 on every term and the total with exact navigation; the fast navigation mode is
+    an approximation (it misses cuts of the free space away from the covered strips) and is only
+    required to agree on half of the candidates here (the benchmark prints its agreement rate)."""
     plan, problem, placed, obj = random_case(pipeline, seed)
     cands = CandidateScorer(problem).candidates(obj)
-    rng = np.random.default_rng(seed)
-    idx = rng.choice(len(cands), size=40, replace=False)
-    terms = CandidateEnergy(problem, [_P(p) for p in placed]).score(obj, cands[idx])
-    nav_agree = 0
+    idx = np.random.default_rng(seed).choice(len(cands), size=30, replace=False)
+    energy = CandidateEnergy(problem, [_P(p) for p in placed])
+    exact_nav, fast = energy.score(obj, cands[idx], nav_mode="exact"), energy.score(obj, cands[idx])
+    fast_agree = 0
     for k, i in enumerate(idx):
         x, z, r = cands[i]
         exact = layout_energy(plan, placed + [Placement(id=obj.id, type=obj.type, x=x, z=z, rotation=r, size=obj.size)],
                               problem).as_dict()
+        for term in exact:
+            assert exact_nav[term][k] == pytest.approx(exact[term], abs=1e-6), term
         for term in ("rel", "collision", "oob", "aff"):
-            assert terms[term][k] == pytest.approx(exact[term], abs=1e-6), term
-        nav_agree += abs(terms["nav"][k] - exact["nav"]) < 1e-9
-    assert nav_agree >= 0.9 * len(idx)
+            assert fast[term][k] == pytest.approx(exact[term], abs=1e-6), term
+        fast_agree += abs(fast["nav"][k] - exact["nav"]) < 1e-9
+    assert fast_agree >= 0.5 * len(idx)

@@ -10,6 +10,7 @@ are multiples of 90 degrees.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -41,9 +42,17 @@ class Poses:
         return cls(np.array([x], float), np.array([z], float), np.array([rotation], float), width, depth)
 
     def boxes(self) -> np.ndarray:
+        return self._boxes
+
+    @cached_property
+    def _boxes(self) -> np.ndarray:
         return boxes(self.x, self.z, self.width, self.depth, self.rotation)
 
     def fronts(self) -> tuple[np.ndarray, np.ndarray]:
+        return self._fronts
+
+    @cached_property
+    def _fronts(self) -> tuple[np.ndarray, np.ndarray]:
         r = np.radians(self.rotation)
         return np.sin(r), np.cos(r)
 
