@@ -18,7 +18,7 @@ from models.language import InstructionParser, RuleParser
 from models.placement import StepObserver, get_solver
 from models.planning import ConstraintWriter, RoomPlanner
 from models.scene import assemble_scene
-from models.values import ConstraintPlan, Layout, RoomPlan, Scene, TaskGraph
+from models.values import ConstraintPlan, Layout, Placement, RoomPlan, Scene, TaskGraph, Timing
 from models.world import normalise_room_type
 
 
@@ -58,8 +58,42 @@ class Pipeline:
         room_plan = self.planner.plan(graph, seed=seed, plan_id=f"scene-{seed}")
         plan = self.writer.write(room_plan)
         layout = self.place(plan, seed, solver, observer)
-        scene = assemble_scene(room_plan, layout, graph, seed)
+        scene = assemble_scene(room_plan, layout, graph, seed, plan.constraints)
         return Generation(graph, room_plan, plan, layout, scene)
+
+
+    def replan(self, gen: Generation, constraints: str, seed: int = 0, solver: str | None = None,
+               observer: StepObserver | None = None) -> Generation:
+        """The same room and objects with edited constraint text, placed again."""
+        plan = gen.plan.model_copy(update={"constraints": constraints})
+        layout = self.place(plan, seed, solver, observer)
+        return Generation(gen.task_graph, gen.room_plan, plan, layout,
+                          assemble_scene(gen.room_plan, layout, gen.task_graph, seed, constraints))
+
+    def move(self, gen: Generation, object_id: str, x: float, z: float, rotation: float, seed: int = 0) -> Generation:
+        """A designer's drag: one object at a new pose, everything else as it was."""
+        placements = [p.model_copy(update={"x": round(x, 4), "z": round(z, 4), "rotation": rotation % 360})
+                      if p.id == object_id else p for p in gen.layout.placements]
+        layout = gen.layout.model_copy(update={"placements": placements})
+        return Generation(gen.task_graph, gen.room_plan, gen.plan, layout,
+                          assemble_scene(gen.room_plan, layout, gen.task_graph, seed, gen.plan.constraints))
+
+
+def generation_of(scene: Scene) -> Generation:
+    """Re-open a stored scene as a Generation (it carries its room plan and constraint text)."""
+    if scene.room_plan is None or scene.task_graph is None:
+        raise ValueError(f"scene {scene.id} was stored without its room plan; it can be viewed but not edited")
+    rp = scene.room_plan
+    plan = ConstraintPlan(id=rp.id, room=rp.room, objects=rp.objects, constraints=scene.constraints or "")
+    sizes = {o.id: o for o in rp.objects}
+    placements = [Placement(id=o.id, type=o.type, x=o.x, z=o.z, rotation=o.rotation, size=sizes[o.id].size)
+                  for o in scene.objects if o.id in sizes]
+    layout_prov = next((p for p in scene.provenance if p.stage == "layout"), None)
+    layout = Layout(plan_id=plan.id, solver=layout_prov.method if layout_prov else "stored",
+                    seed=layout_prov.seed or 0 if layout_prov else 0, placements=placements,
+                    unplaced=[u for u in scene.unplaced if u.id in sizes], warnings=[],
+                    timing=Timing(total_s=0.0, per_object_s=0.0), provenance=layout_prov)
+    return Generation(scene.task_graph, rp, plan, layout, scene)
 
 
 OUTPUT_FILES = ("task_graph.json", "plan.json", "layout.json", "house.json", "scene.glb")

@@ -72,7 +72,8 @@ def vr_anchor(objects: list[SceneObject], graph: TaskGraph | None, width: float,
     return None
 
 
-def assemble_scene(plan: RoomPlan, layout: Layout, graph: TaskGraph | None = None, seed: int = 0) -> Scene:
+def assemble_scene(plan: RoomPlan, layout: Layout, graph: TaskGraph | None = None, seed: int = 0,
+                   constraints: str | None = None) -> Scene:
     cat = catalogue()
     rng = random.Random(seed)
     warnings = list(layout.warnings)
@@ -111,6 +112,6 @@ def assemble_scene(plan: RoomPlan, layout: Layout, graph: TaskGraph | None = Non
     provenance = [pv for pv in (graph.provenance if graph else None, plan.provenance, layout.provenance) if pv]
     return Scene(id=plan.id, room=room, task_graph=graph, objects=objects, unplaced=unplaced,
                  robot_start=robot_start(plan), vr_anchor=vr_anchor(objects, graph, room.width, room.depth),
-                 warnings=warnings,
+                 warnings=warnings, room_plan=plan, constraints=constraints,
                  provenance=provenance + [Provenance(stage="scene", method="assemble", seed=seed)])
 

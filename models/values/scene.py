@@ -7,6 +7,7 @@ from pydantic import Field
 from models.values.common import Provenance, Size, Value
 from models.values.layout import Unplaced
 from models.values.room import Room
+from models.values.room_plan import RoomPlan
 from models.values.task_graph import TaskGraph
 
 
@@ -42,6 +43,9 @@ class Scene(Value):
     vr_anchor: AgentPose | None = None
     warnings: list[str] = Field(default_factory=list)
     provenance: list[Provenance] = Field(default_factory=list)
+    # what the scene was made from, so that a stored version can be re-opened and edited
+    room_plan: RoomPlan | None = None
+    constraints: str | None = None
 
     def all_objects(self) -> list[SceneObject]:
         out = []

@@ -1,0 +1,143 @@
+"""The HTTP service: generate scenes, store accepted versions, list and export them.
+
+A thin shell over `app.pipeline` and `studio_db`; request bodies are validated models, so bad input
+gets a 422 that names the field. OpenAPI docs are served at /docs.
+"""
+
+from __future__ import annotations
+
+import json
+
+from fastapi import FastAPI, HTTPException, Response
+from pydantic import BaseModel, Field, field_validator
+
+from app.pipeline import Pipeline, dump
+from models.exports.glb import to_glb
+from models.exports.procthor_house import to_house
+from models.language import InstructionError, check_instruction
+from models.placement import SOLVERS
+from models.values import Scene
+from models.world import UnknownRoomType, normalise_room_type
+from studio_db import NotFound, Store
+from studio_db.store import Edit
+
+
+class GenerateRequest(BaseModel):
+    instruction: str = Field(min_length=1, max_length=1000, examples=["Put a chilled bread on the counter"])
+    room_type: str = Field(examples=["kitchen"])
+    seed: int = Field(0, ge=0, le=2**31 - 1)
+    solver: str = "dfs"
+
+    @field_validator("instruction")
+    @classmethod
+    def _instruction(cls, v: str) -> str:
+        try:
+            return check_instruction(v)
+        except InstructionError as e:
+            raise ValueError(str(e)) from e
+
+    @field_validator("room_type")
+    @classmethod
+    def _room(cls, v: str) -> str:
+        try:
+            return normalise_room_type(v)
+        except UnknownRoomType as e:
+            raise ValueError(str(e)) from e
+
+    @field_validator("solver")
+    @classmethod
+    def _solver(cls, v: str) -> str:
+        if v not in SOLVERS:
+            raise ValueError(f"unknown solver {v!r}; available: {', '.join(sorted(SOLVERS))}")
+        return v
+
+
+class EditIn(BaseModel):
+    kind: str = Field(min_length=1, max_length=40)
+    target: str = Field(min_length=1, max_length=200)
+    before: object = None
+    after: object = None
+
+
+class AcceptRequest(BaseModel):
+    name: str = Field(min_length=1, max_length=200)
+    scene: Scene
+    seed: int = Field(0, ge=0)
+    solver: str = Field("dfs", min_length=1, max_length=40)
+    edits: list[EditIn] = Field(default_factory=list)
+
+
+def create_app(store: Store, pipeline: Pipeline | None = None) -> FastAPI:
+    pipeline = pipeline or Pipeline()
+    app = FastAPI(title="H3DS Studio API", version="0.1.0",
+                  description="Instruction -> AI2-THOR scene; stored scenes, versions and exports.")
+
+    def scene_or_404(scene_id: int, number: int | None = None) -> Scene:
+        try:
+            return store.scene(scene_id, number)
+        except NotFound as e:
+            raise HTTPException(404, str(e)) from e
+
+    @app.get("/health")
+    def health() -> dict:
+        return {"status": "ok", "database": store.location.split("@")[-1]}
+
+    @app.post("/generate")
+    def generate(req: GenerateRequest) -> dict:
+        """Run the whole pipeline; nothing is stored until the scene is accepted."""
+        try:
+            gen = pipeline.generate(req.instruction, req.room_type, seed=req.seed, solver=req.solver)
+        except InstructionError as e:
+            raise HTTPException(422, [{"loc": ["body", "instruction"], "msg": str(e)}]) from e
+        return {k: json.loads(dump(getattr(gen, k))) for k in ("task_graph", "plan", "layout", "scene")}
+
+    @app.post("/scenes", status_code=201)
+    def accept(req: AcceptRequest) -> dict:
+        """Store a scene as a new scene with version 1."""
+        edits = [Edit(e.kind, e.target, e.before, e.after) for e in req.edits]
+        scene_id, number = store.create_scene(req.name, req.scene, req.seed, req.solver, edits)
+        return {"scene_id": scene_id, "version": number}
+
+    @app.post("/scenes/{scene_id}/versions", status_code=201)
+    def accept_version(scene_id: int, req: AcceptRequest) -> dict:
+        """Store a scene as the next version of an existing scene."""
+        edits = [Edit(e.kind, e.target, e.before, e.after) for e in req.edits]
+        try:
+            number = store.add_version(scene_id, req.name, req.scene, req.seed, req.solver, edits)
+        except NotFound as e:
+            raise HTTPException(404, str(e)) from e
+        return {"scene_id": scene_id, "version": number}
+
+    @app.get("/scenes")
+    def list_scenes() -> list[dict]:
+        return store.list_scenes()
+
+    @app.get("/scenes/{scene_id}")
+    def get_scene(scene_id: int) -> dict:
+        try:
+            return {"scene_id": scene_id, "versions": store.versions(scene_id), "edits": store.edits(scene_id)}
+        except NotFound as e:
+            raise HTTPException(404, str(e)) from e
+
+    @app.get("/scenes/{scene_id}/versions/{number}")
+    def get_version(scene_id: int, number: int) -> dict:
+        return json.loads(scene_or_404(scene_id, number).model_dump_json(exclude_none=True))
+
+    @app.get("/scenes/{scene_id}/versions/{number}/house.json")
+    def export_house(scene_id: int, number: int) -> dict:
+        return to_house(scene_or_404(scene_id, number))
+
+    @app.get("/scenes/{scene_id}/versions/{number}/scene.glb")
+    def export_glb(scene_id: int, number: int) -> Response:
+        return Response(to_glb(scene_or_404(scene_id, number)), media_type="model/gltf-binary",
+                        headers={"Content-Disposition": f'attachment; filename="scene-{scene_id}-v{number}.glb"'})
+
+    @app.get("/scenes/{scene_id}/versions/{number}/layout.json")
+    def export_layout(scene_id: int, number: int) -> dict:
+        from app.pipeline import generation_of
+        try:
+            return json.loads(dump(generation_of(scene_or_404(scene_id, number)).layout))
+        except ValueError as e:
+            raise HTTPException(409, str(e)) from e
+
+    return app

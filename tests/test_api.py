@@ -1,0 +1,75 @@
+"""The HTTP service against a real SQLite file, with a restart of the app between write and read."""
+
+import pytest
+from fastapi.testclient import TestClient
+
+from app.api import create_app
+from studio_db import Store
+
+
+@pytest.fixture
+def db_url(tmp_path):
+    return f"sqlite:///{tmp_path / 'studio.db'}"
+
+
+def client(db_url):
+    return TestClient(create_app(Store(db_url)))
+
+
+def test_generate_accept_restart_read_export(db_url):
+    api = client(db_url)
+    assert api.get("/health").json()["status"] == "ok"
+    gen = api.post("/generate", json={"instruction": "Put a chilled bread on the counter", "room_type": "Kitchen",
+                                      "seed": 2})
+    assert gen.status_code == 200
+    scene = gen.json()["scene"]
+    saved = api.post("/scenes", json={"name": "bread v1", "scene": scene, "seed": 2, "solver": "dfs",
+                                      "edits": [{"kind": "move", "target": "fridge-0", "before": [1, 2], "after": [2, 2]}]})
+    assert saved.status_code == 201 and saved.json()["version"] == 1
+    sid = saved.json()["scene_id"]
+    assert api.post(f"/scenes/{sid}/versions", json={"name": "bread v2", "scene": scene}).json()["version"] == 2
+
+    again = client(db_url)  # a new app on the same file: nothing stored is lost
+    listed = again.get("/scenes").json()
+    assert listed[0]["id"] == sid and listed[0]["versions"] == 2
+    detail = again.get(f"/scenes/{sid}").json()
+    assert [v["number"] for v in detail["versions"]] == [1, 2] and detail["edits"][0]["target"] == "fridge-0"
+    assert again.get(f"/scenes/{sid}/versions/1").json()["id"] == scene["id"]
+    house = again.get(f"/scenes/{sid}/versions/2/house.json").json()
+    assert house["metadata"]["schema"] == "1.0.0"
+    glb = again.get(f"/scenes/{sid}/versions/2/scene.glb")
+    assert glb.content[:4] == b"glTF"
+    assert again.get(f"/scenes/{sid}/versions/2/layout.json").json()["placements"]
+
+
+@pytest.mark.parametrize("body,field", [
+    ({"instruction": "", "room_type": "kitchen"}, "instruction"),
+    ({"instruction": "x" * 2000, "room_type": "kitchen"}, "instruction"),
+    ({"instruction": "Put a mug in the sink", "room_type": "spaceship"}, "room_type"),
+    ({"instruction": "Put a mug in the sink", "room_type": "kitchen", "seed": -1}, "seed"),
+    ({"instruction": "Put a mug in the sink", "room_type": "kitchen", "solver": "magic"}, "solver"),
+    ({"room_type": "kitchen"}, "instruction"),
+])
+def test_bad_requests_are_422_naming_the_field(db_url, body, field):
+    r = client(db_url).post("/generate", json=body)
+    assert r.status_code == 422
+    assert any(field in [str(p) for p in d["loc"]] for d in r.json()["detail"])
+
+
+def test_bad_accept_is_422_and_stores_nothing(db_url):
+    api = client(db_url)
+    r = api.post("/scenes", json={"name": "", "scene": {"id": "x"}})
+    assert r.status_code == 422 and {"name", "scene"} <= {d["loc"][1] for d in r.json()["detail"]}
+    assert api.get("/scenes").json() == []
+
+
+def test_missing_things_are_404(db_url):
+    api = client(db_url)
+    assert api.get("/scenes/99").status_code == 404
+    assert api.get("/scenes/99/versions/1/house.json").status_code == 404
+
+
+def test_openapi_documents_every_route(db_url):
+    paths = client(db_url).get("/openapi.json").json()["paths"]
+    assert {"/generate", "/scenes", "/scenes/{scene_id}/versions", "/scenes/{scene_id}/versions/{number}/scene.glb",
+            "/health"} <= set(paths)

@@ -1,0 +1,41 @@
+"""Storage on a real SQLite file: persistence across reopen, and failed writes that change nothing."""
+
+import pytest
+
+from studio_db import NotFound, Store
+from studio_db.store import Edit
+
+
+@pytest.fixture(scope="module")
+def scene(pipeline):
+    return pipeline.generate("Put a chilled bread on the counter", "kitchen", seed=0).scene
+
+
+def test_versions_survive_a_reopen_and_use_wal(tmp_path, scene):
+    url = f"sqlite:///{tmp_path / 'db.sqlite'}"
+    store = Store(url)
+    sid, _ = store.create_scene("bread", scene, 0, "dfs", [Edit("move", "fridge-0", [0, 0], [1, 1])])
+    store.add_version(sid, "bread 2", scene, 1, "dfs")
+    reopened = Store(url)
+    assert [v["number"] for v in reopened.versions(sid)] == [1, 2]
+    assert reopened.scene(sid, 1) == scene and reopened.scene(sid).id == scene.id
+    assert reopened.edits(sid)[0]["after"] == [1, 1]
+    with reopened.engine.connect() as c:
+        assert c.exec_driver_sql("PRAGMA journal_mode").scalar() == "wal"
+
+
+def test_a_failed_write_leaves_the_previous_version_intact(tmp_path, scene):
+    store = Store(f"sqlite:///{tmp_path / 'db.sqlite'}")
+    sid, _ = store.create_scene("bread", scene, 0, "dfs")
+    with pytest.raises(TypeError):  # an edit whose payload cannot be stored aborts the whole version
+        store.add_version(sid, "broken", scene, 0, "dfs", [Edit("move", "x", object(), None)])
+    assert [v["number"] for v in store.versions(sid)] == [1]
+    assert store.scene(sid) == scene and store.edits(sid) == []
+
+
+def test_unknown_scene(tmp_path, scene):
+    store = Store(f"sqlite:///{tmp_path / 'db.sqlite'}")
+    with pytest.raises(NotFound):
+        store.add_version(7, "nope", scene, 0, "dfs")
+    with pytest.raises(NotFound):
+        store.scene(7)
