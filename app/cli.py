@@ -133,6 +133,29 @@ def cmd_data(args) -> int:
     return 0
 
 
+def cmd_studio(args) -> int:
+    import time
+
+    from app.pipeline import Pipeline
+    from frontend.server import Studio, serve_api
+    from studio_db import Store
+
+    store, pipeline = Store(), Pipeline()
+    studio = Studio(args.host, args.port, store, pipeline)
+    api_port = args.api_port or studio.port + 1
+    serve_api(store, pipeline, args.host, api_port)
+    shown = "localhost" if args.host in ("0.0.0.0", "127.0.0.1") else args.host
+    print(f"H3DS Studio: http://{shown}:{studio.port}   (open it in a browser)")
+    print(f"HTTP API:    http://{shown}:{api_port}/docs")
+    print(f"Database:    {store.location}")
+    try:
+        while True:
+            time.sleep(3600)
+    except KeyboardInterrupt:
+        studio.stop()
+    return 0
+
+
 def cmd_bench(args) -> int:
     from app.bench import run_benchmark
     return run_benchmark(args.what, args)
@@ -168,6 +191,12 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--solver", default=None)
     p.add_argument("--out", required=True, metavar="DIR")
     p.set_defaults(run=cmd_generate)
+
+    p = sub.add_parser("studio", help="the browser studio and its HTTP API (prints the URLs)")
+    p.add_argument("--host", default="127.0.0.1", help="address to listen on (0.0.0.0 for other machines)")
+    p.add_argument("--port", type=int, default=8080, help="studio port; if busy, the next free one is used")
+    p.add_argument("--api-port", type=int, default=None, help="HTTP API port (default: studio port + 1)")
+    p.set_defaults(run=cmd_studio)
 
     p = sub.add_parser("demo", help="generate the demo scene (what `make run` does until the studio lands)")
     p.add_argument("--out", default="out/demo", metavar="DIR")

@@ -10,14 +10,13 @@ from __future__ import annotations
 import numpy as np
 import trimesh
 
-from models.exports.procthor_house import wall_segments
+from models.scene.walls import wall_boxes
 from models.values import Scene, SceneObject
 
 ROLE_COLOURS = {"anchor": (220, 60, 60, 255), "key": (240, 160, 40, 255), "inference": (60, 120, 220, 255),
                 "context": (170, 170, 170, 255)}
 FLOOR_COLOUR = (200, 190, 170, 255)
 WALL_COLOUR = (235, 235, 230, 255)
-WALL_THICKNESS = 0.1
 UNITY_TO_GLTF = np.diag([1.0, 1.0, -1.0, 1.0])
 
 
@@ -34,33 +33,7 @@ def _box(extents, centre, yaw_deg: float, colour, name: str) -> trimesh.Trimesh:
 
 
 def _wall_pieces(scene: Scene) -> list[trimesh.Trimesh]:
-    """Each wall cut into solid pieces around its openings."""
-    room = scene.room
-    height = room.wall_height or 2.6
-    pieces = []
-    for wall, (x0, z0, x1, z1) in wall_segments(room.width, room.depth).items():
-        length = room.wall_length(wall)
-        holes = sorted([(o.center - o.width / 2, o.center + o.width / 2, o.sill or 0.0, (o.sill or 0.0) + (o.height or 2.0))
-                        for o in room.doors + room.windows if o.wall == wall])
-        spans, cursor = [], 0.0
-        for lo, hi, bottom, top in holes:
-            spans.append((cursor, lo, 0.0, height))
-            if bottom > 0:
-                spans.append((lo, hi, 0.0, bottom))
-            spans.append((lo, hi, top, height))
-            cursor = hi
-        spans.append((cursor, length, 0.0, height))
-        along = np.array([x1 - x0, z1 - z0]) / length
-        outward = {"south": (0, -1), "north": (0, 1), "west": (-1, 0), "east": (1, 0)}[wall]
-        for k, (a, b, y0, y1) in enumerate(spans):
-            if b - a < 1e-3 or y1 - y0 < 1e-3:
-                continue
-            mid = (a + b) / 2
-            cx = x0 + along[0] * mid + outward[0] * WALL_THICKNESS / 2
-            cz = z0 + along[1] * mid + outward[1] * WALL_THICKNESS / 2
-            ext = (b - a, y1 - y0, WALL_THICKNESS) if wall in ("south", "north") else (WALL_THICKNESS, y1 - y0, b - a)
-            pieces.append(_box(ext, (cx, (y0 + y1) / 2, cz), 0, WALL_COLOUR, f"wall-{wall}-{k}"))
-    return pieces
+    return [_box(w.extents, w.centre, 0, WALL_COLOUR, w.name) for w in wall_boxes(scene.room)]
 
 
 def _object_meshes(obj: SceneObject) -> list[trimesh.Trimesh]:

@@ -7,6 +7,7 @@ point), objects with real assetIds and their children, lights, and the agent's s
 
 from __future__ import annotations
 
+from models.scene.walls import wall_segments
 from models.values import Opening, Scene, SceneObject
 from models.world import catalogue
 from models.world.rooms import ROOM_SPECS
@@ -19,12 +20,6 @@ AGENT_HEIGHT = 0.95
 
 def _xyz(x: float, y: float, z: float) -> dict[str, float]:
     return {"x": round(float(x), 4), "y": round(float(y), 4), "z": round(float(z), 4)}
-
-
-def wall_segments(width: float, depth: float) -> dict[str, tuple[float, float, float, float]]:
-    """Each wall from its lower-coordinate end to the other, as (x0, z0, x1, z1)."""
-    return {"south": (0, 0, width, 0), "north": (0, depth, width, depth),
-            "west": (0, 0, 0, depth), "east": (width, 0, width, depth)}
 
 
 def _wall_id(owner: str, seg: tuple[float, float, float, float]) -> str:

@@ -1,0 +1,1 @@
+"""The browser studio, built on viser: instruction -> task graph -> animated placement -> stored scene."""

@@ -1,0 +1,43 @@
+"""`h3ds studio`: the viser studio on one port and the HTTP API on the next, over one store."""
+
+from __future__ import annotations
+
+import threading
+
+import uvicorn
+import viser
+
+from app.api import create_app
+from app.pipeline import Pipeline
+from frontend.session import StudioSession
+from studio_db import Store
+
+
+class Studio:
+    """A running studio: every browser tab that connects gets its own StudioSession."""
+
+    def __init__(self, host: str = "127.0.0.1", port: int = 8080, store: Store | None = None,
+                 pipeline: Pipeline | None = None):
+        self.store = store or Store()
+        self.pipeline = pipeline or Pipeline()
+        self.server = viser.ViserServer(host=host, port=port, label="H3DS Studio", verbose=False)
+        self.sessions: dict[int, StudioSession] = {}
+        self.server.on_client_connect(self._connect)
+        self.server.on_client_disconnect(lambda c: self.sessions.pop(c.client_id, None))
+
+    def _connect(self, client: viser.ClientHandle) -> None:
+        self.sessions[client.client_id] = StudioSession(client, self.pipeline, self.store)
+
+    @property
+    def port(self) -> int:
+        return self.server.get_port()
+
+    def stop(self) -> None:
+        self.server.stop()
+
+
+def serve_api(store: Store, pipeline: Pipeline, host: str, port: int) -> uvicorn.Server:
+    """Start the HTTP API in a background thread; returns the uvicorn server (call .should_exit to stop)."""
+    server = uvicorn.Server(uvicorn.Config(create_app(store, pipeline), host=host, port=port, log_level="warning"))
+    threading.Thread(target=server.run, daemon=True).start()
+    return server
