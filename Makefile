@@ -1,9 +1,10 @@
 # The two commands of the README. Both bootstrap .venv idempotently: a stamp file records the
 # pyproject.toml it was installed from, so a second run installs nothing.
-PY      ?= python3
-VENV    := .venv
-BIN     := $(VENV)/bin
-STAMP   := $(VENV)/.installed
+PY       ?= python3
+VENV     := .venv
+BIN      := $(VENV)/bin
+STAMP    := $(VENV)/.installed
+CHROMIUM := /usr/bin/chromium
 
 .PHONY: run test bench clean-venv
 
@@ -17,15 +18,26 @@ $(STAMP): pyproject.toml | $(BIN)/python
 	$(BIN)/pip install -e ".[test]"
 	touch $(STAMP)
 
-run: $(STAMP)
-	$(BIN)/h3ds demo
+# The browser tests drive Debian's chromium (never a downloaded browser).
+$(CHROMIUM):
+	@if [ "$$(id -u)" = 0 ]; then \
+		apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium; \
+	else \
+		echo "chromium is missing: run 'sudo apt-get install chromium' once"; exit 1; \
+	fi
 
-test: $(STAMP)
+run: $(STAMP)
+	$(BIN)/h3ds studio
+
+test: $(STAMP) $(CHROMIUM)
 	$(BIN)/python -m pytest
 
-bench: $(STAMP)
+bench: $(STAMP) $(CHROMIUM)
 	$(BIN)/h3ds bench parser
 	$(BIN)/h3ds bench generate
+	$(BIN)/h3ds bench energy
+	$(BIN)/h3ds bench studio
+	$(BIN)/h3ds bench placement --dataset seen
 
 clean-venv:
 	rm -rf $(VENV)

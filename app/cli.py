@@ -203,7 +203,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.set_defaults(run=cmd_demo)
 
     p = sub.add_parser("bench", help="benchmarks that print figures: parser, generate, placement, energy")
-    p.add_argument("what", choices=["parser", "generate", "placement", "energy"])
+    p.add_argument("what", choices=["parser", "generate", "placement", "energy", "studio"])
     p.add_argument("--n", type=int, default=30, help="instructions (generate) or plans (placement) to run")
     p.add_argument("--split", default="valid_unseen", help="ALFRED split to score (parser)")
     p.add_argument("--dataset", default="seen", choices=["seen", "unseen_a", "unseen_b"],

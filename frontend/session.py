@@ -48,6 +48,7 @@ class State:
     seed: int = 0
     solver: str = "dfs"
     picked: str | None = None
+    runs: int = 0  # scenes shown in this tab so far (numbers the status line)
 
 
 class StudioSession:
@@ -154,12 +155,13 @@ class StudioSession:
             if fresh:
                 self.state.edits, self.state.scene_id = [], None
             self.state.shown = len(steps)
+            self.state.runs += 1
         self.redraw()
         if fresh:
             self.look_at_room()
         self.refresh_panels()
         placed = len(gen.layout.placements)
-        self.say(f"Scene ready: {placed} placed, {len(gen.layout.unplaced)} unplaced "
+        self.say(f"Scene ready (#{self.state.runs}): {placed} placed, {len(gen.layout.unplaced)} unplaced "
                  f"({1000 * (time.perf_counter() - started):.0f} ms). Room: **{gen.task_graph.room_type}**.")
         threading.Thread(target=self._after_scene, args=(gen, steps), daemon=True).start()
 

@@ -10,6 +10,8 @@ def run_benchmark(what: str, args) -> int:
         from app.bench.generate import main
     elif what == "placement":
         from app.bench.placement import main
+    elif what == "studio":
+        from app.bench.studio import main
     elif what == "energy":
         from app.bench.energy import main
     else:
