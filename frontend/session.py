@@ -242,7 +242,7 @@ class StudioSession:
         self.step_md.content = f"**Step {self.state.shown} / {len(steps)}**: placing `{step.object_id}` at {where}"
         if step.x is None:
             return
-        frames = 8
+        frames = max(2, min(8, int(20 / float(self.speed.value))))  # fewer frames when playing fast
         duration = min(0.25, 0.8 / float(self.speed.value))
         for k in range(1, frames + 1):
             self.view.drop_in(step.object_id, self.state.gen.scene, k / frames)

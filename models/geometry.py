@@ -99,9 +99,12 @@ def boxes(x, z, width, depth, rotation) -> np.ndarray:
 
 def overlap_many(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """(N, M) overlap areas between boxes a (N, 4) and b (M, 4)."""
-    dx = np.minimum(a[:, None, 2], b[None, :, 2]) - np.maximum(a[:, None, 0], b[None, :, 0])
-    dz = np.minimum(a[:, None, 3], b[None, :, 3]) - np.maximum(a[:, None, 1], b[None, :, 1])
-    return np.clip(dx, 0, None) * np.clip(dz, 0, None)
+    ax0, az0, ax1, az1 = (np.ascontiguousarray(c)[:, None] for c in a.T)
+    dx = np.minimum(ax1, b[:, 2]) - np.maximum(ax0, b[:, 0])
+    dz = np.minimum(az1, b[:, 3]) - np.maximum(az0, b[:, 1])
+    np.maximum(dx, 0.0, out=dx)
+    np.maximum(dz, 0.0, out=dz)
+    return dx * dz
 
 
 def gap_many(a: np.ndarray, b: np.ndarray) -> np.ndarray:

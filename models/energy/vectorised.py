@@ -38,10 +38,14 @@ class _Integral:
         """b: (..., 4) boxes; cells whose centres lie inside."""
         c = self.grid.cell
         nx, nz = self.table.shape[0] - 1, self.table.shape[1] - 1
-        i0 = np.clip(np.ceil(b[..., 0] / c - 0.5 - 1e-9), 0, nx).astype(int)
-        i1 = np.clip(np.floor(b[..., 2] / c - 0.5 + 1e-9) + 1, 0, nx).astype(int)
-        j0 = np.clip(np.ceil(b[..., 1] / c - 0.5 - 1e-9), 0, nz).astype(int)
-        j1 = np.clip(np.floor(b[..., 3] / c - 0.5 + 1e-9) + 1, 0, nz).astype(int)
+
+        def index(v, top):
+            return np.minimum(np.maximum(v, 0), top).astype(np.intp)
+
+        i0 = index(np.ceil(b[..., 0] / c - 0.5 - 1e-9), nx)
+        i1 = index(np.floor(b[..., 2] / c - 0.5 + 1e-9) + 1, nx)
+        j0 = index(np.ceil(b[..., 1] / c - 0.5 - 1e-9), nz)
+        j1 = index(np.floor(b[..., 3] / c - 0.5 + 1e-9) + 1, nz)
         i1, j1 = np.maximum(i1, i0), np.maximum(j1, j0)
         t = self.table
         return t[i1, j1] - t[i0, j1] - t[i1, j0] + t[i0, j0]
