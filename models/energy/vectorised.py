@@ -185,10 +185,14 @@ class CandidateEnergy:
         total = self.reach_count.count(strip)
         return (total - self.reach_count.count(_intersect(np.broadcast_to(strip, cut.shape), cut))) > 0
 
-    def _navigation(self, obj: PlanObject, cands: np.ndarray, body: np.ndarray) -> np.ndarray:
+    def _targets(self, obj: PlanObject) -> tuple[list, bool, int]:
+        """Placed task objects, whether the candidate is one, and how many there are in all."""
         targets = [p for p in self.placed if p.id in self.task]
         is_target = obj.id in self.task
-        n_targets = len(targets) + is_target
+        return targets, is_target, len(targets) + is_target
+
+    def _navigation(self, obj: PlanObject, cands: np.ndarray, body: np.ndarray) -> np.ndarray:
+        targets, is_target, n_targets = self._targets(obj)
         if n_targets == 0:
             return np.zeros(len(cands))
         cut = _inflate(body, ROBOT_RADIUS)
@@ -208,9 +212,7 @@ class CandidateEnergy:
 
     def _navigation_exact(self, obj: PlanObject, cands: np.ndarray, body: np.ndarray) -> np.ndarray:
         """Label the free space with each candidate in place: what the exact energy computes, per candidate."""
-        targets = [p for p in self.placed if p.id in self.task]
-        is_target = obj.id in self.task
-        n_targets = len(targets) + is_target
+        targets, is_target, n_targets = self._targets(obj)
         if n_targets == 0:
             return np.zeros(len(cands))
         strips = [nav.in_box_mask(self.grid, front_boxes(p.x, p.z, p.rotation, p.width, p.depth, ACCESS_DEPTH))

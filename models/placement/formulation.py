@@ -14,10 +14,15 @@ disjunctions), as SMT-based layout solvers do. The model itself is Holodeck's fo
 from __future__ import annotations
 
 import random
+import time
 from dataclasses import dataclass, field
 
+import numpy as np
+
+from models.placement.base import PlacementStep
 from models.placement.problem import DOOR_CLEARANCE, PlacementProblem
-from models.values import PlanObject
+from models.placement.result import make_layout
+from models.values import ConstraintPlan, Layout, PlanObject
 
 UNPLACED_COST = {True: 1000.0, False: 100.0}  # task object? -> cost of leaving it out
 GLOBAL_WEIGHT = 2.0
@@ -276,3 +281,33 @@ def _clearance(m: Model, A: ObjVars, others: list[ObjVars], depth: float, W: flo
                      tag=f"clr[{A.obj.id},{B.obj.id},{k}]")
     m.soft(f"c[{A.obj.id}]", cases, CLEARANCE_WEIGHT, needs=[A.placed])
 
+
+
+class ModelSolver:
+    """What the MILP and Z3 placers share: build the model, solve it within the budget, read the poses."""
+
+    name = "model"
+    no_solution = "no solution within the time budget"
+
+    def __init__(self, time_budget_s: float):
+        self.time_budget_s = time_budget_s
+
+    def solve(self, plan: ConstraintPlan, seed: int = 0, time_budget_s: float | None = None,
+              observer=None) -> Layout:
+        start = time.perf_counter()
+        problem = PlacementProblem.from_plan(plan)
+        model, ov = build(problem, seed)
+        budget = time_budget_s if time_budget_s is not None else self.time_budget_s
+        remaining = max(0.05, budget - (time.perf_counter() - start))
+        poses, reasons = self.run(model, ov, seed, remaining)
+        if observer is not None:  # a whole-model solver has no steps: replay its answer in placement order
+            for o in problem.order:
+                x, z, r = poses.get(o.id, (None, None, None))
+                observer(PlacementStep(o.id, x, z, r, np.empty((0, 3)), np.empty(0), {}))
+        return make_layout(problem, poses, reasons, self.name, seed, time.perf_counter() - start,
+                           default_reason=self.no_solution)
+
+    def run(self, model: Model, ov: dict[str, ObjVars], seed: int, seconds: float
+            ) -> tuple[dict[str, tuple[float, float, float]], dict[str, str]]:
+        """(object id -> (x, z, rotation), object id -> why it is left out)."""
+        raise NotImplementedError

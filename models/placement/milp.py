@@ -7,15 +7,10 @@ best incumbent is read back; objects whose `placed` binary is 0 are reported unp
 
 from __future__ import annotations
 
-import time
-
 import highspy
 import numpy as np
 
-from models.placement.formulation import Expr, Model, build
-from models.placement.problem import PlacementProblem
-from models.placement.result import make_layout
-from models.values import ConstraintPlan, Layout
+from models.placement.formulation import Expr, Model, ModelSolver, ObjVars
 
 INF = highspy.kHighsInf
 
@@ -64,27 +59,22 @@ def big_m_rows(m: Model, index: dict[str, int]) -> _Rows:
     return rows
 
 
-class MILPSolver:
+class MILPSolver(ModelSolver):
     name = "milp"
+    no_solution = "HiGHS found no feasible layout within the time budget"
 
     def __init__(self, time_budget_s: float = 3.0):
-        self.time_budget_s = time_budget_s
+        super().__init__(time_budget_s)
 
-    def solve(self, plan: ConstraintPlan, seed: int = 0, time_budget_s: float | None = None,
-              observer=None) -> Layout:
-        start = time.perf_counter()
-        problem = PlacementProblem.from_plan(plan)
-        model, ov = build(problem, seed)
+    def run(self, model: Model, ov: dict[str, ObjVars], seed: int, seconds: float):
         names = list(model.vars)
         index = {n: i for i, n in enumerate(names)}
         rows = big_m_rows(model, index)
-
         h = highspy.Highs()
         h.setOptionValue("output_flag", False)
         h.setOptionValue("random_seed", int(seed) % 2_147_483_647)
         h.setOptionValue("threads", 1)
-        budget = time_budget_s if time_budget_s is not None else self.time_budget_s
-        h.setOptionValue("time_limit", max(0.05, budget - (time.perf_counter() - start)))
+        h.setOptionValue("time_limit", seconds)
         lo = np.array([model.vars[n].lo for n in names])
         hi = np.array([model.vars[n].hi for n in names])
         cost = np.array([model.objective.terms.get(n, 0.0) for n in names])
@@ -106,5 +96,4 @@ class MILPSolver:
                     poses[oid] = (values[index[f"x[{oid}]"]], values[index[f"z[{oid}]"]], 90.0 * k)
                 else:
                     reasons[oid] = "the MILP solution leaves it out: no position fits with the others"
-        return make_layout(problem, poses, reasons, self.name, seed, time.perf_counter() - start,
-                           default_reason="HiGHS found no feasible layout within the time budget")
+        return poses, reasons

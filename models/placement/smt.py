@@ -7,27 +7,19 @@ disjunctions itself instead of through big-M rows. The seed sets Z3's random see
 
 from __future__ import annotations
 
-import time
-
 import z3
 
-from models.placement.formulation import Expr, Model, build
-from models.placement.problem import PlacementProblem
-from models.placement.result import make_layout
-from models.values import ConstraintPlan, Layout
+from models.placement.formulation import Expr, Model, ModelSolver, ObjVars
 
 
-class Z3Solver:
+class Z3Solver(ModelSolver):
     name = "z3"
+    no_solution = "Z3 found no model within the time budget"
 
     def __init__(self, time_budget_s: float = 5.0):
-        self.time_budget_s = time_budget_s
+        super().__init__(time_budget_s)
 
-    def solve(self, plan: ConstraintPlan, seed: int = 0, time_budget_s: float | None = None,
-              observer=None) -> Layout:
-        start = time.perf_counter()
-        problem = PlacementProblem.from_plan(plan)
-        model, ov = build(problem, seed)
+    def run(self, model: Model, ov: dict[str, ObjVars], seed: int, seconds: float):
         v = {n: (z3.Int(n) if var.binary else z3.Real(n)) for n, var in model.vars.items()}
 
         def lin(e: Expr):
@@ -37,8 +29,7 @@ class Z3Solver:
             return z3.And([v[n] == 1 for n in names]) if names else z3.BoolVal(True)
 
         opt = z3.Optimize()
-        budget = time_budget_s if time_budget_s is not None else self.time_budget_s
-        opt.set("timeout", max(50, int(1000 * (budget - (time.perf_counter() - start)))))
+        opt.set("timeout", max(50, int(1000 * seconds)))
         z3.set_param("smt.random_seed", int(seed) % 2**31, "sat.random_seed", int(seed) % 2**31)
         for n, var in model.vars.items():
             opt.add(v[n] >= var.lo, v[n] <= var.hi)
@@ -68,5 +59,4 @@ class Z3Solver:
                     poses[oid] = (val(f"x[{oid}]"), val(f"z[{oid}]"), 90.0 * k)
                 else:
                     reasons[oid] = "Z3's best model leaves it out: no position fits with the others"
-        return make_layout(problem, poses, reasons, self.name, seed, time.perf_counter() - start,
-                           default_reason="Z3 found no model within the time budget")
+        return poses, reasons
