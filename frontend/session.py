@@ -25,7 +25,7 @@ from models.exports.procthor_house import to_house
 from models.language import InstructionError
 from models.metrics import scene_metrics
 from models.placement import SOLVERS, PlacementStep
-from models.values import Layout, TaskGraph, TaskObject
+from models.values import TaskGraph, TaskObject
 from models.world import ROOM_TYPES, catalogue
 from studio_db import Store
 from studio_db.store import Edit
@@ -176,7 +176,7 @@ class StudioSession:
         self.client.camera.look_at = world(room.width / 2, 0.0, room.depth / 2)
         self.client.camera.position = world(room.width / 2, 1.3 * size, -0.55 * size)
 
-    def redraw(self, highlight: str | None = None) -> None:
+    def redraw(self) -> None:
         gen = self.state.gen
         if gen is None:
             return
@@ -184,7 +184,7 @@ class StudioSession:
             self.view.clear()
             self.view.draw_room(gen.scene)
             visible = self._visible()
-            self.view.draw_objects(gen.scene, visible, highlight)
+            self.view.draw_objects(gen.scene, visible)
             step = self.state.steps[self.state.shown - 1] if 0 < self.state.shown <= len(self.state.steps) else None
             self.view.heat_map(step if self.heat.value and self.state.shown < len(self.state.steps) else None)
         self.controls = None
@@ -503,9 +503,6 @@ class StudioSession:
             self.client.send_file_download("house.json", json.dumps(to_house(gen.scene), indent=2).encode())
         else:
             self.client.send_file_download("scene.glb", to_glb(gen.scene))
-
-    def layout(self) -> Layout | None:
-        return self.state.gen.layout if self.state.gen else None
 
 
 class _Rejected(Exception):

@@ -74,16 +74,16 @@ class SceneView:
                              position=world(v.x, 0.005, v.z), wxyz=yaw(v.rotation))
             self.api.add_label("/markers/vr-zone/label", "VR user stands here", position=(0, 0.05, 0))
 
-    def draw_objects(self, scene: Scene, visible: set[str] | None = None, highlight: str | None = None) -> None:
+    def draw_objects(self, scene: Scene, visible: set[str] | None = None) -> None:
         """Every object (or those in `visible`) as a box of its true size, coloured by role, with its label."""
         for obj in scene.objects:
             shown = visible is None or obj.id in visible
-            self._box(obj, shown, obj.id == highlight)
+            self._box(obj, shown)
             for child in obj.children:
-                self._box(child, shown, False)
+                self._box(child, shown)
 
-    def _box(self, obj: SceneObject, shown: bool, highlighted: bool) -> None:
-        handle = self.api.add_box(f"/objects/{obj.id}", color=HIGHLIGHT if highlighted else colour(obj.role),
+    def _box(self, obj: SceneObject, shown: bool) -> None:
+        handle = self.api.add_box(f"/objects/{obj.id}", color=colour(obj.role),
                                   dimensions=(obj.size.x, obj.size.y, obj.size.z), position=world(obj.x, obj.y, obj.z),
                                   wxyz=yaw(obj.rotation), visible=shown)
         self.labels[obj.id] = self.api.add_label(f"/objects/{obj.id}/label", f"{obj.id}",
@@ -92,13 +92,17 @@ class SceneView:
         self.objects[obj.id] = handle
 
     def drop_in(self, obj_id: str, scene: Scene, fraction: float) -> None:
-        """Animate an object settling into place: `fraction` 0 is 0.8 m above, 1 is at rest."""
+        """Animate an object settling into place: `fraction` 0 is 0.8 m above, 1 is at rest.
+
+        It is drawn in the highlight colour while it moves and takes its role colour when it lands.
+        """
         obj = next((o for o in scene.all_objects() if o.id == obj_id), None)
         handle = self.objects.get(obj_id)
         if obj is None or handle is None:
             return
         handle.visible = True
         self.labels[obj_id].visible = True
+        handle.color = colour(obj.role) if fraction >= 1 else HIGHLIGHT
         ease = 1 - (1 - fraction) ** 3
         handle.position = world(obj.x, obj.y + 0.8 * (1 - ease), obj.z)
 

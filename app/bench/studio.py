@@ -60,6 +60,8 @@ def main(args) -> int:
             for i, (text, room) in enumerate(items):
                 _field(page, "Instruction").fill(text)
                 _field(page, "Seed").fill(str(i + 1))
+                _field(page, "Room type").click()
+                page.get_by_role("option", name=room).first.click()
                 t0 = time.perf_counter()
                 page.get_by_role("button", name="Generate").click()
                 page.get_by_text(re.compile(rf"Scene ready \(#{i + 1}\)|Error")).wait_for(timeout=60_000)

@@ -9,7 +9,6 @@ object with no valid pose is reported in `unplaced` with the reason.
 
 from __future__ import annotations
 
-import random
 import time
 
 import numpy as np
