@@ -15,7 +15,8 @@ from pathlib import Path
 from models.exports.glb import to_glb
 from models.exports.procthor_house import to_house
 from models.language import InstructionParser, RuleParser
-from models.placement import StepObserver, get_solver
+from models.placement import PlacementProblem, StepObserver, get_solver
+from models.placement.base import Fixed
 from models.planning import ConstraintWriter, RoomPlanner
 from models.scene import assemble_scene
 from models.values import ConstraintPlan, Layout, Placement, RoomPlan, Scene, TaskGraph, Timing
@@ -45,8 +46,8 @@ class Pipeline:
         return self.parser.parse(instruction, room_type)
 
     def place(self, plan: ConstraintPlan, seed: int = 0, solver: str | None = None,
-              observer: StepObserver | None = None) -> Layout:
-        return get_solver(solver or self.solver).solve(plan, seed=seed, observer=observer)
+              observer: StepObserver | None = None, keep: Fixed | None = None) -> Layout:
+        return get_solver(solver or self.solver).solve(plan, seed=seed, observer=observer, fixed=keep)
 
     def generate(self, instruction: str, room_type: str, seed: int = 0, solver: str | None = None,
                  observer: StepObserver | None = None) -> Generation:
@@ -64,9 +65,10 @@ class Pipeline:
 
     def replan(self, gen: Generation, constraints: str, seed: int = 0, solver: str | None = None,
                observer: StepObserver | None = None) -> Generation:
-        """The same room and objects with edited constraint text, placed again."""
+        """The same room and objects with edited constraint text, placed again from the edited point:
+        objects placed before the first one whose constraints changed keep their poses."""
         plan = gen.plan.model_copy(update={"constraints": constraints})
-        layout = self.place(plan, seed, solver, observer)
+        layout = self.place(plan, seed, solver, observer, keep=kept_before_edit(gen, plan))
         return Generation(gen.task_graph, gen.room_plan, plan, layout,
                           assemble_scene(gen.room_plan, layout, gen.task_graph, seed, constraints))
 
@@ -77,6 +79,20 @@ class Pipeline:
         layout = gen.layout.model_copy(update={"placements": placements})
         return Generation(gen.task_graph, gen.room_plan, gen.plan, layout,
                           assemble_scene(gen.room_plan, layout, gen.task_graph, seed, gen.plan.constraints))
+
+
+def kept_before_edit(gen: Generation, edited: ConstraintPlan) -> Fixed:
+    """Poses of the objects that the edited plan places before its first changed object."""
+    before = PlacementProblem.from_plan(gen.plan).constraints.objects
+    after = PlacementProblem.from_plan(edited)
+    keep: Fixed = {}
+    for o in after.order:
+        if after.constraints.objects[o.id] != before.get(o.id):
+            break
+        p = gen.layout.placement(o.id)
+        if p is not None:
+            keep[o.id] = (p.x, p.z, p.rotation)
+    return keep
 
 
 def generation_of(scene: Scene) -> Generation:

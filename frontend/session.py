@@ -16,7 +16,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import viser
 
-from app.pipeline import Generation, Pipeline, generation_of
+from app.pipeline import Generation, Pipeline, generation_of, kept_before_edit
 from frontend.view import SceneView, rotation_of, world
 from models.constraints import GLOBALS, RELATIONS, Constraint, read_constraints, write_constraints
 from models.energy.exact import layout_energy
@@ -363,10 +363,12 @@ class StudioSession:
             return
         before = gen.plan.constraints
         self.state.edits.append(Edit("constraints", "plan", before, text))
+        kept = kept_before_edit(gen, gen.plan.model_copy(update={"constraints": text}))
         self._run(lambda obs: self.pipeline.replan(gen, text, self.state.seed, self.state.solver, obs), fresh=False)
         moved = [p.id for p in self.state.gen.layout.placements
                  if (q := gen.layout.placement(p.id)) is None or (q.x, q.z, q.rotation) != (p.x, p.z, p.rotation)]
-        self.c_message.content = f"Re-placed after the edit; moved: {', '.join(moved) or 'nothing'}."
+        self.c_message.content = (f"Re-placed after the edit ({len(kept)} objects before the edited one kept); "
+                                  f"moved: {', '.join(moved) or 'nothing'}.")
 
     def _edit_object(self, change) -> None:
         gen = self.state.gen

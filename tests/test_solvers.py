@@ -75,3 +75,22 @@ def test_place_command_runs_every_solver(tmp_path, capsys, solver):
     path.write_text(plan(KITCHEN, KITCHEN_TEXT).model_dump_json())
     assert main(["place", str(path), "--solver", solver, "--out", str(tmp_path / "layout.json")]) == 0
     assert f'"solver": "{solver}"' in (tmp_path / "layout.json").read_text()
+
+
+@pytest.mark.parametrize("solver", SOLVERS)
+def test_an_edit_replans_from_the_edited_point(pipeline, solver):
+    """Objects placed before the first object whose constraints changed keep their poses."""
+    from app.pipeline import kept_before_edit
+    gen = pipeline.replan(pipeline.generate("Put a chilled bread on the counter", "kitchen", seed=0),
+                          pipeline.generate("Put a chilled bread on the counter", "kitchen", seed=0).plan.constraints,
+                          0, solver)
+    lines = gen.plan.constraints.splitlines()
+    last = lines[-1].split("|")[0].strip()
+    edited_text = "\n".join(lines[:-1] + [f"{last} | middle"])
+    edited = gen.plan.model_copy(update={"constraints": edited_text})
+    kept = kept_before_edit(gen, edited)
+    assert kept and last not in kept
+    again = pipeline.replan(gen, edited_text, 0, solver)
+    for oid, (x, z, r) in kept.items():
+        p = again.layout.placement(oid)
+        assert p is not None and abs(p.x - x) < 0.01 and abs(p.z - z) < 0.01 and p.rotation == r

@@ -25,13 +25,15 @@ class PlacementStep:
 
 
 StepObserver = Callable[[PlacementStep], None]
+Fixed = dict[str, tuple[float, float, float]]
 
 
 class Solver(Protocol):
     name: str
 
     def solve(self, plan: ConstraintPlan, seed: int = 0, time_budget_s: float | None = None,
-              observer: StepObserver | None = None) -> Layout: ...
+              observer: StepObserver | None = None, fixed: Fixed | None = None) -> Layout:
+        """Place the plan's objects; `fixed` poses (object id -> x, z, rotation) are kept as they are."""
 
 
 class UnknownSolver(ValueError):

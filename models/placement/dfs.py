@@ -13,7 +13,7 @@ import time
 
 import numpy as np
 
-from models.placement.base import PlacementStep, StepObserver
+from models.placement.base import Fixed, PlacementStep, StepObserver
 from models.placement.candidates import CandidateScorer, PlacedObject
 from models.placement.problem import PlacementProblem
 from models.placement.result import make_layout
@@ -32,10 +32,10 @@ class DFSSolver:
         self.time_budget_s = time_budget_s
 
     def solve(self, plan: ConstraintPlan, seed: int = 0, time_budget_s: float | None = None,
-              observer: StepObserver | None = None) -> Layout:
+              observer: StepObserver | None = None, fixed: Fixed | None = None) -> Layout:
         start = time.perf_counter()
         deadline = start + (time_budget_s if time_budget_s is not None else self.time_budget_s)
-        problem = PlacementProblem.from_plan(plan)
+        problem = PlacementProblem.from_plan(plan, fixed)
         scorer = CandidateScorer(problem)
         rng = np.random.default_rng(seed)
         order = problem.order
@@ -43,6 +43,8 @@ class DFSSolver:
 
         def choices(i: int, placed: list[PlacedObject]):
             obj = order[i]
+            if obj.id in problem.fixed:  # a kept pose is the only choice
+                return np.array([problem.fixed[obj.id]], float), np.zeros(1), {}, [0]
             cands, scores, terms = scorer.evaluate(obj, placed, strict=True)
             if not np.isfinite(scores).any():  # relax the front-clearance rules before giving up
                 cands, scores, terms = scorer.evaluate(obj, placed, strict=False)

@@ -33,6 +33,7 @@ AROUND_LINF = 0.42
 FAR_GAP = 1.5
 FRONT_GAP, SIDE_GAP, SLACK, ALIGN = 1.5, 0.8, 0.3, 0.1
 EDGE_TOL, MIDDLE_MIN = 0.05, 0.4
+PIN = 0.005  # a kept pose may move this much, so that poses rounded to 0.1 mm stay feasible
 
 
 @dataclass
@@ -150,6 +151,14 @@ def build(problem: PlacementProblem, seed: int = 0) -> tuple[Model, dict[str, Ob
         for r in rot:
             m.binary(r)
         x, z = m.var(f"x[{o.id}]", 0, W), m.var(f"z[{o.id}]", 0, D)
+        if o.id in problem.fixed:  # a kept pose: pin its variables (to within rounding of stored poses)
+            fx, fz, fr = problem.fixed[o.id]
+            m.vars[f"x[{o.id}]"] = Var(f"x[{o.id}]", max(0.0, fx - PIN), min(W, fx + PIN), False)
+            m.vars[f"z[{o.id}]"] = Var(f"z[{o.id}]", max(0.0, fz - PIN), min(D, fz + PIN), False)
+            m.vars[p] = Var(p, 1.0, 1.0, True)
+            k_fixed = int(round(fr / 90.0)) % 4
+            for k, r in enumerate(rot):
+                m.vars[r] = Var(r, float(k == k_fixed), float(k == k_fixed), True)
         hx = sum((Expr({rot[k]: _half(o, k)[0]}) for k in range(4)), Expr())
         hz = sum((Expr({rot[k]: _half(o, k)[1]}) for k in range(4)), Expr())
         m.require([sum((Expr({r: 1.0}) for r in rot), Expr()) - Expr({p: 1.0}),
@@ -293,13 +302,17 @@ class ModelSolver:
         self.time_budget_s = time_budget_s
 
     def solve(self, plan: ConstraintPlan, seed: int = 0, time_budget_s: float | None = None,
-              observer=None) -> Layout:
+              observer=None, fixed: dict[str, tuple[float, float, float]] | None = None) -> Layout:
         start = time.perf_counter()
-        problem = PlacementProblem.from_plan(plan)
+        problem = PlacementProblem.from_plan(plan, fixed)
         model, ov = build(problem, seed)
         budget = time_budget_s if time_budget_s is not None else self.time_budget_s
         remaining = max(0.05, budget - (time.perf_counter() - start))
         poses, reasons = self.run(model, ov, seed, remaining)
+        if problem.fixed and not poses:  # the kept poses cannot be completed: place everything afresh
+            problem = PlacementProblem.from_plan(plan)
+            model, ov = build(problem, seed)
+            poses, reasons = self.run(model, ov, seed, max(0.05, budget - (time.perf_counter() - start)))
         if observer is not None:  # a whole-model solver has no steps: replay its answer in placement order
             for o in problem.order:
                 x, z, r = poses.get(o.id, (None, None, None))

@@ -18,13 +18,16 @@ class PlacementProblem:
     order: list[PlanObject]  # targets before the objects constrained to them, task objects early
     impossible: list[Unplaced] = field(default_factory=list)
     clearance: dict[str, float] = field(default_factory=dict)  # object id -> front clearance depth
+    fixed: dict[str, tuple[float, float, float]] = field(default_factory=dict)  # kept poses (x, z, rotation)
 
     @property
     def warnings(self) -> list[str]:
         return self.constraints.warnings
 
     @classmethod
-    def from_plan(cls, plan: ConstraintPlan) -> PlacementProblem:
+    def from_plan(cls, plan: ConstraintPlan, fixed: dict[str, tuple[float, float, float]] | None = None
+                  ) -> PlacementProblem:
+        """`fixed`: poses to keep as they are (a designer re-plans from an edited point onwards)."""
         cat = catalogue()
         types = {o.id: o.type for o in plan.objects}
         constraints = read_constraints(
@@ -40,7 +43,10 @@ class PlacementProblem:
             else:
                 feasible.append(o)
         clearance = {o.id: cat.front_clearance(o.type) if o.type in cat else 0.0 for o in plan.objects}
-        return cls(plan, constraints, _order(feasible, constraints), impossible, clearance)
+        order = _order(feasible, constraints)
+        kept = {k: v for k, v in (fixed or {}).items() if any(o.id == k for o in order)}
+        order = [o for o in order if o.id in kept] + [o for o in order if o.id not in kept]
+        return cls(plan, constraints, order, impossible, clearance, kept)
 
 
 def _order(objects: list[PlanObject], constraints: ConstraintSet) -> list[PlanObject]:
