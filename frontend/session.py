@@ -8,6 +8,7 @@ and versions, downloads) and Headset (reserved for the headset bridge).
 
 from __future__ import annotations
 
+import contextlib
 import json
 import threading
 import time
@@ -390,10 +391,8 @@ class StudioSession:
                 raise _Rejected
             else:
                 oc.relations.append(Constraint(name, target))
-        try:
+        with contextlib.suppress(_Rejected):
             self._edit_object(change)
-        except _Rejected:
-            pass
 
     def clear_relations(self) -> None:
         self._edit_object(lambda oc: oc.relations.clear())

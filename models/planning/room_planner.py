@@ -104,7 +104,7 @@ class RoomPlanner:
                 if child:
                     surface.append(self._surface(child, "context", obj.id, new_id, rng))
 
-        floor = self._fit_floor(floor, surface, room_type, rng)
+        floor = self._fit_floor(floor, surface, room_type)
         min_area = sum(o.size.x * o.size.z for o in floor) / FLOOR_FILL_LIMIT
         room = make_room(room_type, rng, min_area=min_area, size_scale=self.settings.size_scale)
         kept = {o.id for o in floor}
@@ -188,8 +188,7 @@ class RoomPlanner:
         return SurfaceObject(id=new_id(type_name), type=type_name, role=role, parent=parent,
                              size=Size(x=asset.size[0], y=asset.size[1], z=asset.size[2]))
 
-    def _fit_floor(self, floor: list[PlanObject], surface: list[SurfaceObject], room_type: str,
-                   rng: random.Random) -> list[PlanObject]:
+    def _fit_floor(self, floor: list[PlanObject], surface: list[SurfaceObject], room_type: str) -> list[PlanObject]:
         """Drop context furniture (least needed first) while it would cover too much of the largest room."""
         spec = ROOM_SPECS[room_type]
         largest = (spec.max_side * self.settings.size_scale) ** 2
