@@ -112,3 +112,26 @@ def gap_many(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     dx = np.maximum(0, np.maximum(a[:, None, 0] - b[None, :, 2], b[None, :, 0] - a[:, None, 2]))
     dz = np.maximum(0, np.maximum(a[:, None, 1] - b[None, :, 3], b[None, :, 1] - a[:, None, 3]))
     return np.hypot(dx, dz)
+
+
+class SweptBoxes:
+    """Many boxes (N, 4) sorted once along x, so that overlaps with a few other boxes touch only the
+    candidates whose x-range can meet them (a sweep-and-prune broad phase). Used where N is large."""
+
+    def __init__(self, a: np.ndarray):
+        self.a = a
+        self.order = np.argsort(a[:, 0], kind="stable")
+        self.sorted = np.ascontiguousarray(a[self.order])
+        self.max_width = float((a[:, 2] - a[:, 0]).max()) if len(a) else 0.0
+
+    def overlaps(self, b: np.ndarray):
+        """For each box of b (M, 4): (indices into a, overlap areas > 0) of the boxes of a it overlaps."""
+        x0 = self.sorted[:, 0]
+        for box in b:
+            lo = np.searchsorted(x0, box[0] - self.max_width, side="left")
+            hi = np.searchsorted(x0, box[2], side="left")
+            s = self.sorted[lo:hi]
+            dx = np.minimum(s[:, 2], box[2]) - np.maximum(s[:, 0], box[0])
+            dz = np.minimum(s[:, 3], box[3]) - np.maximum(s[:, 1], box[1])
+            hit = (dx > 0) & (dz > 0)
+            yield self.order[lo:hi][hit], (dx * dz)[hit]

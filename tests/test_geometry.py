@@ -58,3 +58,17 @@ def test_inside_room():
     assert inside_room(Footprint(0.5, 0.5, 1, 1), 4, 4)
     assert not inside_room(Footprint(0.4, 0.5, 1, 1), 4, 4)
     assert not inside_room(Footprint(2, 2, 1, 1, 45), 2.5, 2.5)
+
+
+@settings(max_examples=50)
+@given(st.lists(st.tuples(coords, coords, sizes, sizes, right_angles), min_size=1, max_size=30),
+       st.lists(st.tuples(coords, coords, sizes, sizes, right_angles), min_size=1, max_size=5))
+def test_swept_overlaps_equal_the_dense_ones(many, few):
+    from models.geometry import SweptBoxes
+    a = np.concatenate([boxes([x], [z], w, d, [r]) for x, z, w, d, r in many])
+    b = np.concatenate([boxes([x], [z], w, d, [r]) for x, z, w, d, r in few])
+    dense = overlap_many(a, b)
+    swept = np.zeros_like(dense)
+    for m, (idx, area) in enumerate(SweptBoxes(a).overlaps(b)):
+        swept[idx, m] = area
+    assert np.allclose(dense, swept, atol=1e-12)

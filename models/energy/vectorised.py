@@ -18,7 +18,7 @@ from models.constraints.evaluate import Poses, box_gap, placement, relation, wal
 from models.energy import navigation as nav
 from models.energy.prior import WALL_TOUCH, relation_prior
 from models.energy.weights import ACCESS_DEPTH, AFF_BLOCKED, AFF_OUTSIDE, EPS, PRIOR_LAMBDA, ROBOT_RADIUS, WEIGHTS
-from models.geometry import boxes, overlap_many
+from models.geometry import SweptBoxes, boxes, overlap_many
 from models.placement.candidates import front_boxes
 from models.placement.problem import PlacementProblem
 from models.values import PlanObject
@@ -153,8 +153,11 @@ class CandidateEnergy:
         rel = np.log1p(rel_sum / rel_n)
 
         # collision and out-of-bounds
-        ov = overlap_many(body, self.bodies) if len(self.bodies) else np.zeros((n, 0))
-        collision = np.log1p(self.collision_sum + (ov ** 2).sum(axis=1))
+        swept = SweptBoxes(body)
+        squared = np.zeros(n)
+        for idx, area in swept.overlaps(self.bodies):
+            squared[idx] += area ** 2
+        collision = np.log1p(self.collision_sum + squared)
         area = (body[:, 2] - body[:, 0]) * (body[:, 3] - body[:, 1])
         inside = overlap_many(body, self.room_box[None])[:, 0]
         oob = np.log1p(self.oob_sum + (1 - inside / (area + EPS)) ** 2)
@@ -163,16 +166,16 @@ class CandidateEnergy:
         aff_sum = np.full(n, self.aff_sum)
         functional = len(self.zones)
         open_zones = [zone for oid, zone in self.zones.items() if not self.problem.constraints.tied(oid, obj.id)]
-        if open_zones:
-            aff_sum += AFF_BLOCKED * (overlap_many(body, np.stack(open_zones)) > OVERLAP_TOL).sum(axis=1)
+        for idx, area in swept.overlaps(np.array(open_zones).reshape(-1, 4)):
+            aff_sum[idx[area > OVERLAP_TOL]] += AFF_BLOCKED
         depth = self.problem.clearance.get(obj.id, 0.0)
         if depth > 0:
             functional += 1
             zone = front_boxes(x, z, rot, obj.size.x, obj.size.z, depth)
             aff_sum += AFF_OUTSIDE * self._outside(zone)
-            if len(self.bodies):
-                free = np.array([not self.problem.constraints.tied(obj.id, p.id) for p in self.placed])
-                aff_sum += AFF_BLOCKED * ((overlap_many(zone, self.bodies) > OVERLAP_TOL) & free).sum(axis=1)
+            free = [b for b, p in zip(self.bodies, self.placed) if not self.problem.constraints.tied(obj.id, p.id)]
+            for idx, area in SweptBoxes(zone).overlaps(np.array(free).reshape(-1, 4)):
+                aff_sum[idx[area > OVERLAP_TOL]] += AFF_BLOCKED
         aff = aff_sum / max(functional, 1)
 
         nav_e = self._navigation(obj, cands, body) if nav_mode == "fast" else self._navigation_exact(obj, cands, body)
