@@ -36,6 +36,7 @@ ROLE_MARK = {role: f'<span style="color:rgb{tuple(ROLE_COLOURS[role][:3])}">&#96
 ROLE_CHOICES = ("key", "anchor", "inference", "key + anchor", "anchor + inference")
 ENERGY_TERMS = ("rel", "collision", "oob", "nav", "aff", "total")
 DEFAULT_INSTRUCTION = "Put a chilled bread on the counter"
+LIVE_RESCORE_S = 0.3
 
 
 @dataclass
@@ -60,6 +61,7 @@ class StudioSession:
         self.view = SceneView(client.scene)
         self.view.on_pick = self.pick
         self.controls = None
+        self._last_live = 0.0
         self._build_gui()
 
     # ---- GUI --------------------------------------------------------------------------------------
@@ -297,8 +299,8 @@ class StudioSession:
         items = [f"- `{oc.placement}`"] + [f"- `{c.name}` → `{c.target}`" for c in oc.relations]
         self.c_list.content = f"**{oc.object_id}**\n\n" + "\n".join(items)
 
-    def show_metrics(self) -> None:
-        gen = self.state.gen
+    def show_metrics(self, gen: Generation | None = None) -> None:
+        gen = gen or self.state.gen
         m = scene_metrics(gen.plan, gen.layout)
         e = layout_energy(gen.plan, gen.layout.placements).as_dict()
         self.metrics_md.content = (
@@ -335,7 +337,20 @@ class StudioSession:
         self.controls = self.client.scene.add_transform_controls(
             "/drag", scale=0.6, active_axes=(True, False, True), position=world(obj.x, 0.02, obj.z),
             disable_sliders=True)
-        self.controls.on_drag_end(lambda _: self.dragged(obj.id))
+        self.controls.on_update(lambda event: self.dragged(obj.id) if getattr(event, "phase", None) == "end"
+                                else self.dragging(obj.id))
+
+    def dragging(self, object_id: str) -> None:
+        """While the gizmo moves: re-score the metrics live (at most every 0.3 s), without redrawing."""
+        now = time.perf_counter()
+        if now - self._last_live < LIVE_RESCORE_S or self.state.gen is None:
+            return
+        self._last_live = now
+        x, _, neg_z = self.controls.position
+        gen = self.state.gen
+        before = gen.layout.placement(object_id)
+        moved = self.pipeline.move(gen, object_id, float(x), float(-neg_z), before.rotation, self.state.seed)
+        self.show_metrics(moved)
 
     def dragged(self, object_id: str) -> None:
         gen = self.state.gen

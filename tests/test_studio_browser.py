@@ -69,6 +69,16 @@ def test_designer_flow(browser, studio):
     assert "Fridge" in page.get_by_text("Inference objects:").locator("xpath=..").inner_text()
     assert "CounterTop" in page.get_by_text("Anchor object:").locator("xpath=..").inner_text()
 
+    # picking and dragging act on the 3D canvas; the test drives the same handles a click and a drag do
+    session = next(iter(studio.sessions.values()))
+    page.get_by_role("tab", name="Constraints").click()
+    session.pick("fridge-0")
+    page.get_by_text(re.compile(r"fridge-0.*\(Fridge, inference\)")).wait_for(timeout=WAIT)
+    session.controls.position = (0.6, 0.02, -0.6)
+    session.dragged("fridge-0")
+    page.get_by_text(re.compile("Moved `?fridge-0`? to")).wait_for(timeout=WAIT)
+    assert session.state.edits[-1].kind == "move"
+
     page.get_by_role("tab", name="Placement").click()
     page.get_by_role("button", name="Step").click()
     page.get_by_text(re.compile(r"Step 1 / \d+")).wait_for(timeout=WAIT)
@@ -94,6 +104,7 @@ def test_designer_flow(browser, studio):
     saved = page.get_by_text(re.compile(r"Saved as scene \d+, version 1"))
     saved.wait_for(timeout=WAIT)
     scene_id = re.search(r"scene (\d+)", saved.inner_text()).group(1)
+    assert [e["kind"] for e in studio.store.edits(int(scene_id))] == ["move", "constraints"]
     SCREENSHOTS.mkdir(parents=True, exist_ok=True)
     page.screenshot(path=str(SCREENSHOTS / "studio.png"))
 
