@@ -1,5 +1,7 @@
 """Storage on a real SQLite file: persistence across reopen, and failed writes that change nothing."""
 
+import os
+
 import pytest
 
 from studio_db import NotFound, Store
@@ -39,3 +41,20 @@ def test_unknown_scene(tmp_path, scene):
         store.add_version(7, "nope", scene, 0, "dfs")
     with pytest.raises(NotFound):
         store.scene(7)
+
+
+POSTGRES = os.environ.get("H3DS_TEST_POSTGRES_URL")
+
+
+@pytest.mark.skipif(not POSTGRES, reason="no PostgreSQL server: .ci/run starts one and sets H3DS_TEST_POSTGRES_URL")
+def test_postgresql_through_database_url(scene, monkeypatch):
+    from studio_db import default_database_url
+    monkeypatch.setenv("DATABASE_URL", POSTGRES)
+    assert default_database_url() == POSTGRES
+    store = Store()
+    sid, _ = store.create_scene("bread on postgres", scene, 0, "dfs", [Edit("move", "fridge-0", [0, 0], [1, 1])])
+    reopened = Store()
+    assert reopened.scene(sid) == scene and reopened.edits(sid)[0]["target"] == "fridge-0"
+    with pytest.raises(TypeError):
+        reopened.add_version(sid, "broken", scene, 0, "dfs", [Edit("move", "x", object(), None)])
+    assert [v["number"] for v in reopened.versions(sid)] == [1]
