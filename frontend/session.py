@@ -516,9 +516,10 @@ class StudioSession:
         if gen is None:
             return
         if kind == "house":
-            self.client.send_file_download("house.json", json.dumps(to_house(gen.scene), indent=2).encode())
+            self.client.send_file_download("house.json", json.dumps(to_house(gen.scene), indent=2).encode(),
+                                           save_immediately=True)
         else:
-            self.client.send_file_download("scene.glb", to_glb(gen.scene))
+            self.client.send_file_download("scene.glb", to_glb(gen.scene), save_immediately=True)
 
 
 class _Rejected(Exception):

@@ -1,5 +1,6 @@
 """The studio in a real browser (Debian's chromium driven by Playwright)."""
 
+import json
 import random
 import re
 from pathlib import Path
@@ -105,6 +106,13 @@ def test_designer_flow(browser, studio):
     saved.wait_for(timeout=WAIT)
     scene_id = re.search(r"scene (\d+)", saved.inner_text()).group(1)
     assert [e["kind"] for e in studio.store.edits(int(scene_id))] == ["move", "constraints"]
+    with page.expect_download() as download:
+        page.get_by_role("button", name="Download house JSON").click()
+    house = json.loads(Path(download.value.path()).read_text())
+    assert house["metadata"]["schema"] == "1.0.0" and download.value.suggested_filename == "house.json"
+    with page.expect_download() as download:
+        page.get_by_role("button", name="Download GLB").click()
+    assert Path(download.value.path()).read_bytes()[:4] == b"glTF"
     SCREENSHOTS.mkdir(parents=True, exist_ok=True)
     page.screenshot(path=str(SCREENSHOTS / "studio.png"))
 
