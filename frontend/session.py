@@ -99,7 +99,7 @@ class StudioSession:
                 series=({"label": "step"}, *[{"label": t, "stroke": c} for t, c in
                                               zip(ENERGY_TERMS, ("#e07b39", "#c0392b", "#8e44ad", "#2980b9",
                                                                  "#27ae60", "#111111"))]),
-                title="Energy terms per step", aspect=1.6)
+                title="Energy terms per step", aspect=1.6, scales={"x": {"time": False}})
 
         with tabs.add_tab("Constraints"):
             self.c_object = gui.add_dropdown("Object", ("-",))

@@ -100,9 +100,12 @@ class SceneView:
         handle = self.objects.get(obj_id)
         if obj is None or handle is None:
             return
-        handle.visible = True
-        self.labels[obj_id].visible = True
-        handle.color = colour(obj.role) if fraction >= 1 else HIGHLIGHT
+        if not handle.visible:  # first frame: show it, in the highlight colour
+            handle.visible = True
+            self.labels[obj_id].visible = True
+            handle.color = HIGHLIGHT
+        if fraction >= 1:
+            handle.color = colour(obj.role)
         ease = 1 - (1 - fraction) ** 3
         handle.position = world(obj.x, obj.y + 0.8 * (1 - ease), obj.z)
 
