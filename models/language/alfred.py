@@ -8,6 +8,8 @@ from dataclasses import dataclass
 from functools import cache
 from importlib import resources
 
+from models.values import Provenance, TaskGraph, TaskObject
+
 # ALFRED's pddl names that the AI2-THOR catalogue spells differently.
 ALFRED_TYPE_NAMES = {"Glassbottle": "Bottle"}
 SCENE_ROOMS = ((1, 30, "kitchen"), (201, 230, "living room"), (301, 330, "bedroom"), (401, 430, "bathroom"))
@@ -51,6 +53,22 @@ class Annotation:
         else:
             out.add((t, "placed_at", ALFRED_TYPE_NAMES.get(self.parent_target, self.parent_target)))
         return out
+
+
+    def task_graph(self) -> TaskGraph:
+        """The ground-truth task graph of interfaces.md: the target is key, the receptacle or lamp is the
+        anchor (and key, as ALFRED annotators name it), the fridge, microwave and knife are inferred."""
+        roles: dict[str, list[str]] = {}
+        for obj, rel, other in sorted(self.label_triplets(), key=lambda t: RELATION_ORDER.index(t[1])):
+            roles.setdefault(obj, ["key"])
+            roles.setdefault(other, ["key", "anchor"] if rel in ("placed_at", "examined_under") else ["inference"])
+        return TaskGraph(instruction=self.instruction, room_type=self.room_type, task_type=self.task_type,
+                         objects=[TaskObject(type=t, roles=r) for t, r in roles.items()],
+                         relations=sorted(self.label_triplets(), key=lambda t: RELATION_ORDER.index(t[1])),
+                         sliced=self.sliced, provenance=Provenance(stage="task_graph", method="alfred-labels"))
+
+
+RELATION_ORDER = ("sliced_with", "cooled_in", "heated_in", "placed_at", "examined_under")
 
 
 @cache

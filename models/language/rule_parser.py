@@ -29,6 +29,8 @@ LOOK_WORDS = {"look", "looking", "examine", "examining", "inspect", "inspecting"
 SLICE_WORDS = {"slice", "sliced", "slices", "slicing", "cut", "chopped", "chop", "piece", "pieces", "wedge",
                "sliver", "half", "halved", "section", "segment"}
 SOURCE_WORDS = {"from", "off", "out"}
+DISCARD_WORDS = {"discard", "discarded", "dispose", "disposed", "throw", "throwing", "threw", "toss", "tossing",
+                 "trash"}
 DESTINATION_WORDS = {"in", "into", "on", "onto", "inside", "at", "to", "atop", "within", "upon"}
 LANDMARK_WORDS = {"by", "near", "beside", "next", "above", "below", "under", "left", "right", "behind", "between",
                   "across", "underneath", "beneath", "front", "of"}
@@ -110,6 +112,8 @@ class RuleParser:
         words = re.findall(r"[a-z0-9]+", text.lower().replace("'s", ""))
         mentions = self.mentions(words)
         wordset = set(words)
+        hint = room or self.infer_room_type([m.types[0] for m in mentions if len(m.types) == 1])
+        mentions = [self._resolve(m, hint) for m in mentions]
 
         sliced = bool(wordset & SLICE_WORDS)
         targets = [m for m in mentions if any(self._pickupable(t) for t in m.types)
@@ -154,6 +158,8 @@ class RuleParser:
         else:
             recep = self._receptacle(mentions, target_m, process[0] if process else None)
             roles = {"key", "anchor"} if recep else {"inference", "anchor"}
+            if recep is None and wordset & DISCARD_WORDS:
+                recep = "GarbageCan"  # "throw away the apple": the bin is implied
             recep = recep or self.default_receptacle(target)
             objects.setdefault(recep, set()).update(roles)
             relations.append((target, "placed_at", recep))
@@ -168,6 +174,14 @@ class RuleParser:
             provenance=Provenance(stage="task_graph", method=self.name),
         )
 
+    def _resolve(self, m: Mention, room: str) -> Mention:
+        """An ambiguous word ("table", "lamp", "bottle") means the candidate most common in the room."""
+        if len(m.types) == 1:
+            return m
+        best = max(m.types, key=lambda t: (self.cat.room_presence(t, room) if t in self.cat else 0.0,
+                                           -m.types.index(t)))
+        return Mention(m.start, m.end, (best,), m.before)
+
     def _lamp_only(self, text: str, room: str | None, mentions: list[Mention]) -> TaskGraph:
         """"Turn on the lamp": a look-at task whose object is not named; only the lamp is certain."""
         lamp_m = next(m for m in mentions if set(m.types) & set(LAMPS))
@@ -180,6 +194,8 @@ class RuleParser:
 
     def _task_type(self, words: list[str], mentions: list[Mention], target: Mention) -> str:
         cue = next((w for w in words if w in COOL_WORDS or w in HEAT_WORDS), None)
+        if cue is None and words and words[0] in ("microwave", "microwaving"):
+            cue = "heat"  # "Microwave a slice of apple...": the appliance used as a verb
         if cue is not None:
             return "pick_cool_then_place_in_recep" if cue in COOL_WORDS else "pick_heat_then_place_in_recep"
         has_lamp = any(set(m.types) & set(LAMPS) for m in mentions)

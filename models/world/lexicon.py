@@ -2,8 +2,8 @@
 
 Every type's own name, split at its capitals ("CounterTop" -> "counter top", "countertop"), is a phrase
 automatically; the table below adds the synonyms, abbreviations and misspellings found in ALFRED's
-human annotations. Ambiguous words ("lamp", "light") map to a tuple of candidates that the parser
-narrows down with the room type.
+human annotations. Ambiguous words ("lamp", "light", "table", "bottle") map to a tuple of candidates
+that the parser narrows down with the room type.
 """
 
 from __future__ import annotations
@@ -22,7 +22,8 @@ SYNONYMS: dict[str, str | tuple[str, ...]] = {
     "tub": "BathtubBasin", "bathtub": "BathtubBasin", "bath tub": "BathtubBasin", "bath": "BathtubBasin",
     "toilet": "Toilet", "commode": "Toilet", "toilet tank": "Toilet", "toilet basin": "Toilet",
     "toilet paper holder": "ToiletPaperHanger", "toilet paper hanger": "ToiletPaperHanger",
-    "toilet roll holder": "ToiletPaperHanger", "paper holder": "ToiletPaperHanger",
+    "toilet roll holder": "ToiletPaperHanger", "paper holder": "ToiletPaperHanger", "holder": "ToiletPaperHanger",
+    "toilet paper roll holder": "ToiletPaperHanger", "roll holder": "ToiletPaperHanger",
     "coffee maker": "CoffeeMachine", "coffee machine": "CoffeeMachine", "coffeemaker": "CoffeeMachine",
     "coffee pot": "CoffeeMachine", "espresso machine": "CoffeeMachine",
     "trash": "GarbageCan", "trash can": "GarbageCan", "trashcan": "GarbageCan", "garbage": "GarbageCan",
@@ -32,7 +33,7 @@ SYNONYMS: dict[str, str | tuple[str, ...]] = {
     # furniture
     "counter": "CounterTop", "counters": "CounterTop", "kitchen counter": "CounterTop", "worktop": "CounterTop",
     "kitchen island": "CounterTop", "island": "CounterTop", "countertop": "CounterTop",
-    "table": "DiningTable", "kitchen table": "DiningTable", "dinner table": "DiningTable",
+    "table": ("DiningTable", "SideTable", "CoffeeTable"), "stand": "SideTable", "kitchen table": "DiningTable", "dinner table": "DiningTable",
     "dining room table": "DiningTable", "round table": "DiningTable", "white table": "DiningTable",
     "coffee table": "CoffeeTable", "glass table": "CoffeeTable", "ottoman table": "CoffeeTable",
     "side table": "SideTable", "end table": "SideTable", "nightstand": "SideTable", "night stand": "SideTable",
@@ -88,7 +89,7 @@ SYNONYMS: dict[str, str | tuple[str, ...]] = {
     "bat": "BaseballBat", "baseball bat": "BaseballBat",
     "pepper shaker": "PepperShaker", "pepper": "PepperShaker", "pepper grinder": "PepperShaker",
     "salt shaker": "SaltShaker", "salt": "SaltShaker", "shaker": "SaltShaker",
-    "bottle": "Bottle", "glass bottle": "Bottle",
+    "bottle": ("SoapBottle", "Bottle", "WineBottle"), "glass bottle": "Bottle",
     "sponge": "DishSponge", "dish sponge": "DishSponge", "scrubber": "DishSponge",
     "kettle": "Kettle", "tea kettle": "Kettle", "teapot": "Kettle", "tea pot": "Kettle",
     "knife": "Knife", "butter knife": "ButterKnife", "kitchen knife": "Knife", "bread knife": "Knife",
