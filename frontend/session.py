@@ -18,6 +18,7 @@ import numpy as np
 import viser
 
 from app.pipeline import Generation, Pipeline, generation_of, kept_before_edit
+from frontend.graph_image import render as render_graph
 from frontend.view import SceneView, rotation_of, world
 from models.constraints import GLOBALS, RELATIONS, Constraint, read_constraints, write_constraints
 from models.energy.exact import layout_energy
@@ -79,6 +80,8 @@ class StudioSession:
             self.solver = gui.add_dropdown("Solver", tuple(sorted(SOLVERS)), initial_value="dfs")
             gui.add_button("Generate", color="green").on_click(lambda _: self.generate())
             self.graph_md = gui.add_markdown("")
+            self.graph_img = gui.add_image(np.full((300, 480, 3), 255, np.uint8), label="Task scene graph",
+                                           visible=False)
             with gui.add_folder("Correct the task graph", expand_by_default=False):
                 self.role_object = gui.add_dropdown("Object", ("-",))
                 self.role_choice = gui.add_dropdown("Role", ROLE_CHOICES)
@@ -280,6 +283,7 @@ class StudioSession:
         lines.append("")
         lines += ["", "**Relations:** " + ("; ".join(f"{a} *{r}* {b}" for a, r, b in g.relations) or "—")]
         self.graph_md.content = "\n\n".join(lines)
+        threading.Thread(target=self._draw_graph, args=(g,), daemon=True).start()
         types = tuple(o.type for o in g.objects) or ("-",)
         self.role_object.options = types
         ids = tuple(o.id for o in gen.plan.objects) or ("-",)
@@ -287,6 +291,10 @@ class StudioSession:
         self.c_target.options = ids
         self.c_text.value = gen.plan.constraints
         self.show_constraints()
+
+    def _draw_graph(self, graph: TaskGraph) -> None:
+        self.graph_img.image = render_graph(graph)
+        self.graph_img.visible = True
 
     def show_constraints(self) -> None:
         gen = self.state.gen
