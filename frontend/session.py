@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import contextlib
 import json
+import logging
 import threading
 import time
 from dataclasses import dataclass, field
@@ -153,7 +154,12 @@ class StudioSession:
         """Run a pipeline step with an observer collecting placement steps, then show the result."""
         started = time.perf_counter()
         steps: list[PlacementStep] = []
-        gen = make(steps.append)
+        try:
+            gen = make(steps.append)
+        except Exception as e:  # shown to the designer; the stored scenes and the current one are untouched
+            logging.getLogger(__name__).exception("pipeline step failed")
+            self.say(f"**Error:** {type(e).__name__}: {e}")
+            return
         with self.lock:
             self.state.playing = False
             self.state.gen, self.state.steps = gen, steps
