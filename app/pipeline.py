@@ -112,9 +112,6 @@ def generation_of(scene: Scene) -> Generation:
     return Generation(scene.task_graph, rp, plan, layout, scene)
 
 
-OUTPUT_FILES = ("task_graph.json", "plan.json", "layout.json", "house.json", "scene.glb")
-
-
 def dump(value) -> str:
     """A value as the JSON of interfaces.md (unset optional fields left out)."""
     return json.dumps(value.model_dump(mode="json", exclude_none=True), indent=2)

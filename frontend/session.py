@@ -51,7 +51,6 @@ class State:
     scene_id: int | None = None
     seed: int = 0
     solver: str = "dfs"
-    picked: str | None = None
     runs: int = 0  # scenes shown in this tab so far (numbers the status line)
 
 
@@ -333,7 +332,6 @@ class StudioSession:
         obj = next((o for o in gen.scene.all_objects() if o.id == object_id), None)
         if obj is None:
             return
-        self.state.picked = object_id
         cat = catalogue()
         t = cat.host(obj.type) if obj.type in cat else None
         flags = ", ".join(k for k, v in (t.flags.items() if t else []) if v) or "—"

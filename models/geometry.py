@@ -51,10 +51,6 @@ class Footprint:
     def polygon(self) -> Polygon:
         return Polygon(self.corners())
 
-    def back_point(self) -> tuple[float, float]:
-        fx, fz = front(self.rotation)
-        return self.x - fx * self.depth / 2, self.z - fz * self.depth / 2
-
     def front_zone(self, clearance: float, widen: float = 0.0) -> Footprint:
         """The rectangle of depth `clearance` in front of the object (the space needed to use it)."""
         fx, fz = front(self.rotation)
@@ -107,12 +103,6 @@ def overlap_many(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return dx * dz
 
 
-def gap_many(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """(N, M) shortest distances between boxes a (N, 4) and b (M, 4)."""
-    dx = np.maximum(0, np.maximum(a[:, None, 0] - b[None, :, 2], b[None, :, 0] - a[:, None, 2]))
-    dz = np.maximum(0, np.maximum(a[:, None, 1] - b[None, :, 3], b[None, :, 1] - a[:, None, 3]))
-    return np.hypot(dx, dz)
-
 
 class SweptBoxes:
     """Many boxes (N, 4) sorted once along x, so that overlaps with a few other boxes touch only the
@@ -127,11 +117,11 @@ class SweptBoxes:
     def overlaps(self, b: np.ndarray):
         """For each box of b (M, 4): (indices into a, overlap areas > 0) of the boxes of a it overlaps."""
         x0 = self.sorted[:, 0]
-        for box in b:
-            lo = np.searchsorted(x0, box[0] - self.max_width, side="left")
-            hi = np.searchsorted(x0, box[2], side="left")
+        for other in b:
+            lo = np.searchsorted(x0, other[0] - self.max_width, side="left")
+            hi = np.searchsorted(x0, other[2], side="left")
             s = self.sorted[lo:hi]
-            dx = np.minimum(s[:, 2], box[2]) - np.maximum(s[:, 0], box[0])
-            dz = np.minimum(s[:, 3], box[3]) - np.maximum(s[:, 1], box[1])
+            dx = np.minimum(s[:, 2], other[2]) - np.maximum(s[:, 0], other[0])
+            dz = np.minimum(s[:, 3], other[3]) - np.maximum(s[:, 1], other[1])
             hit = (dx > 0) & (dz > 0)
             yield self.order[lo:hi][hit], (dx * dz)[hit]

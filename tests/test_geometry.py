@@ -4,8 +4,8 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from models.geometry import (Footprint, boxes, front, gap, gap_many, half_extents, inside_room, overlap_area,
-                             overlap_many, right)
+from models.constraints.evaluate import Poses, box_gap
+from models.geometry import Footprint, boxes, front, gap, half_extents, inside_room, overlap_area, overlap_many, right
 
 sizes = st.floats(0.05, 3.0)
 coords = st.floats(-5, 5)
@@ -30,12 +30,13 @@ def test_quarter_turn_swaps_extents(w, d):
     assert math.isclose(ex, d / 2, rel_tol=1e-9, abs_tol=1e-12) and math.isclose(ez, w / 2, rel_tol=1e-9, abs_tol=1e-12)
 
 
-@given(sizes, sizes, any_angle)
-def test_back_point_is_behind_the_centre(w, d, r):
+@given(sizes, sizes, any_angle, st.floats(0.1, 2.0))
+def test_front_zone_lies_ahead(w, d, r, depth):
     f = Footprint(1, 2, w, d, r)
-    bx, bz = f.back_point()
+    zone = f.front_zone(depth)
     fx, fz = front(r)
-    assert math.isclose((1 - bx) * fx + (2 - bz) * fz, d / 2, rel_tol=1e-6, abs_tol=1e-9)
+    assert math.isclose((zone.x - 1) * fx + (zone.z - 2) * fz, d / 2 + depth / 2, rel_tol=1e-6, abs_tol=1e-9)
+    assert overlap_area(f, zone) < 1e-9
 
 
 @settings(max_examples=200)
@@ -44,7 +45,8 @@ def test_vectorised_overlap_and_gap_match_shapely(x1, z1, w1, d1, r1, x2, z2, w2
     a, b = Footprint(x1, z1, w1, d1, r1), Footprint(x2, z2, w2, d2, r2)
     ba, bb = boxes([x1], [z1], w1, d1, [r1]), boxes([x2], [z2], w2, d2, [r2])
     assert math.isclose(overlap_many(ba, bb)[0, 0], overlap_area(a, b), abs_tol=1e-6)
-    assert math.isclose(gap_many(ba, bb)[0, 0], gap(a, b), abs_tol=1e-6)
+    pa, pb = Poses.one(x1, z1, r1, w1, d1), Poses.one(x2, z2, r2, w2, d2)
+    assert math.isclose(box_gap(pa, pb)[0], gap(a, b), abs_tol=1e-6)
 
 
 @given(coords, coords, sizes, sizes, any_angle, coords, coords, sizes, sizes, any_angle)

@@ -55,10 +55,6 @@ class ObjectType:
         return self.flags["pickupable"]
 
     @property
-    def receptacle(self) -> bool:
-        return self.flags["receptacle"]
-
-    @property
     def on_floor(self) -> bool:
         return bool(self.placement.get("on_floor"))
 
@@ -112,14 +108,6 @@ class Catalogue:
     def is_floor_object(self, name: str) -> bool:
         return self.host(name).on_floor
 
-    def typical_size(self, name: str) -> tuple[float, float, float]:
-        """Median asset size of the type (of its host for fixture parts): what a plan uses before an asset is picked."""
-        host = self.host(name)
-        if not host.assets:
-            return host.size
-        sizes = sorted(host.assets, key=lambda a: a.size[0] * a.size[2])
-        return sizes[len(sizes) // 2].size
-
     def pick_asset(self, name: str, rng: random.Random, fits: tuple[float, float] | None = None) -> Asset:
         """A real asset of the type (or its host); with `fits`, the one whose footprint is closest to it."""
         assets = self.host(name).assets
@@ -135,12 +123,6 @@ class Catalogue:
         if spec.ithor is not None:
             return self.host(name).rooms.get(spec.ithor, {}).get("presence", 0.0)
         return AUTHORED_ROOM_PRIORS[room_type].get(name, 0.0)
-
-    def room_mean_count(self, name: str, room_type: str) -> float:
-        spec = ROOM_SPECS[room_type]
-        if spec.ithor is None:
-            return 1.0
-        return self.host(name).rooms.get(spec.ithor, {}).get("mean_count", 1.0)
 
 
 @cache
