@@ -9,7 +9,9 @@ from __future__ import annotations
 import json
 
 from fastapi import FastAPI, HTTPException, Response
-from pydantic import BaseModel, Field, field_validator
+from typing import Annotated
+
+from pydantic import AfterValidator, BaseModel, Field
 
 from app.pipeline import Pipeline, dump
 from models.exports.glb import to_glb
@@ -17,39 +19,25 @@ from models.exports.procthor_house import to_house
 from models.language import InstructionError, check_instruction
 from models.placement import SOLVERS
 from models.values import Scene
-from models.world import UnknownRoomType, normalise_room_type
+from models.world import normalise_room_type
 from studio_db import NotFound, Store
 from studio_db.store import Edit
 
 
+def _known_solver(name: str) -> str:
+    if name not in SOLVERS:
+        raise ValueError(f"unknown solver {name!r}; available: {', '.join(sorted(SOLVERS))}")
+    return name
+
+
 class GenerateRequest(BaseModel):
-    instruction: str = Field(min_length=1, max_length=1000, examples=["Put a chilled bread on the counter"])
-    room_type: str = Field(examples=["kitchen"])
+    """The checks are the CLI's: their ValueErrors become 422s naming the field."""
+
+    instruction: Annotated[str, Field(min_length=1, max_length=1000, examples=["Put a chilled bread on the counter"]),
+                           AfterValidator(check_instruction)]
+    room_type: Annotated[str, Field(examples=["kitchen"]), AfterValidator(normalise_room_type)]
     seed: int = Field(0, ge=0, le=2**31 - 1)
-    solver: str = "dfs"
-
-    @field_validator("instruction")
-    @classmethod
-    def _instruction(cls, v: str) -> str:
-        try:
-            return check_instruction(v)
-        except InstructionError as e:
-            raise ValueError(str(e)) from e
-
-    @field_validator("room_type")
-    @classmethod
-    def _room(cls, v: str) -> str:
-        try:
-            return normalise_room_type(v)
-        except UnknownRoomType as e:
-            raise ValueError(str(e)) from e
-
-    @field_validator("solver")
-    @classmethod
-    def _solver(cls, v: str) -> str:
-        if v not in SOLVERS:
-            raise ValueError(f"unknown solver {v!r}; available: {', '.join(sorted(SOLVERS))}")
-        return v
+    solver: Annotated[str, AfterValidator(_known_solver)] = "dfs"
 
 
 class EditIn(BaseModel):
