@@ -7,10 +7,9 @@ gets a 422 that names the field. OpenAPI docs are served at /docs.
 from __future__ import annotations
 
 import json
-
-from fastapi import FastAPI, HTTPException, Response
 from typing import Annotated
 
+from fastapi import FastAPI, HTTPException, Response
 from pydantic import AfterValidator, BaseModel, Field
 
 from app.pipeline import Pipeline, dump

@@ -11,8 +11,7 @@ import difflib
 import re
 from collections.abc import Callable
 
-from models.constraints.language import (GLOBALS, RELATIONS, Constraint, ConstraintSet, ObjectConstraints,
-                                         resolve_name)
+from models.constraints.language import GLOBALS, RELATIONS, Constraint, ConstraintSet, ObjectConstraints, resolve_name
 
 
 def _id_key(text: str) -> str:

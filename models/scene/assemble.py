@@ -12,8 +12,18 @@ from __future__ import annotations
 import random
 
 from models.geometry import front
-from models.values import (AgentPose, Layout, Placement, Provenance, RoomPlan, Scene, SceneObject, SurfaceObject,
-                           TaskGraph, Unplaced)
+from models.values import (
+    AgentPose,
+    Layout,
+    Placement,
+    Provenance,
+    RoomPlan,
+    Scene,
+    SceneObject,
+    SurfaceObject,
+    TaskGraph,
+    Unplaced,
+)
 from models.world import catalogue
 from models.world.catalogue import HOST_TYPES
 
