@@ -5,15 +5,12 @@ from __future__ import annotations
 
 import math
 
-import matplotlib
+import numpy as np
+from matplotlib.backends.backend_agg import FigureCanvasAgg
+from matplotlib.figure import Figure
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-from matplotlib.backends.backend_agg import FigureCanvasAgg  # noqa: E402
-
-from models.exports.glb import ROLE_COLOURS  # noqa: E402
-from models.values import TaskGraph  # noqa: E402
+from models.exports.glb import ROLE_COLOURS
+from models.values import TaskGraph
 
 
 def _colour(roles: list[str]) -> tuple[float, float, float]:
@@ -23,7 +20,7 @@ def _colour(roles: list[str]) -> tuple[float, float, float]:
 
 def render(graph: TaskGraph, width_px: int = 480, height_px: int = 300) -> np.ndarray:
     """RGB image (H, W, 3) of the graph."""
-    fig = plt.Figure(figsize=(width_px / 100, height_px / 100), dpi=100)
+    fig = Figure(figsize=(width_px / 100, height_px / 100), dpi=100)
     ax = fig.add_axes((0, 0, 1, 1))
     ax.set_xlim(-1.6, 1.6)
     ax.set_ylim(-1.25, 1.25)
