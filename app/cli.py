@@ -142,12 +142,11 @@ def cmd_studio(args) -> int:
 
     store, pipeline = Store(), Pipeline()
     studio = Studio(args.host, args.port, store, pipeline)
-    api_port = args.api_port or studio.port + 1
-    serve_api(store, pipeline, args.host, api_port)
+    _, api_port = serve_api(store, pipeline, args.host, args.api_port or studio.port + 1)
     shown = "localhost" if args.host in ("0.0.0.0", "127.0.0.1") else args.host
     print(f"H3DS Studio: http://{shown}:{studio.port}   (open it in a browser)")
     print(f"HTTP API:    http://{shown}:{api_port}/docs")
-    print(f"Database:    {store.location}")
+    print(f"Database:    {store.location}", flush=True)
     try:
         while True:
             time.sleep(3600)

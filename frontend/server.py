@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import socket
 import threading
 
 import uvicorn
@@ -36,8 +37,21 @@ class Studio:
         self.server.stop()
 
 
-def serve_api(store: Store, pipeline: Pipeline, host: str, port: int) -> uvicorn.Server:
-    """Start the HTTP API in a background thread; returns the uvicorn server (call .should_exit to stop)."""
+def free_port(host: str, start: int, tries: int = 50) -> int:
+    """The first port from `start` on that can be bound (as viser does for the studio's port)."""
+    for port in range(start, start + tries):
+        with socket.socket() as s:
+            try:
+                s.bind((host, port))
+                return port
+            except OSError:
+                continue
+    raise OSError(f"no free port in {start}-{start + tries - 1} on {host}")
+
+
+def serve_api(store: Store, pipeline: Pipeline, host: str, port: int) -> tuple[uvicorn.Server, int]:
+    """Start the HTTP API in a background thread on `port` or the next free one; returns (server, port)."""
+    port = free_port(host, port)
     server = uvicorn.Server(uvicorn.Config(create_app(store, pipeline), host=host, port=port, log_level="warning"))
     threading.Thread(target=server.run, daemon=True).start()
-    return server
+    return server, port
