@@ -12,8 +12,6 @@ import json
 from dataclasses import dataclass
 from pathlib import Path
 
-from models.exports.glb import to_glb
-from models.exports.procthor_house import to_house
 from models.language import InstructionParser, RuleParser
 from models.placement import PlacementProblem, StepObserver, get_solver
 from models.placement.base import Fixed
@@ -119,6 +117,9 @@ def dump(value) -> str:
 
 def write_generation(gen: Generation, out_dir: Path) -> list[Path]:
     """The five files of `h3ds generate`."""
+    from models.exports.glb import to_glb  # trimesh takes ~0.6 s to import: only when a GLB is written
+    from models.exports.procthor_house import to_house
+
     out_dir.mkdir(parents=True, exist_ok=True)
     texts = {"task_graph.json": dump(gen.task_graph), "plan.json": dump(gen.plan), "layout.json": dump(gen.layout),
              "house.json": json.dumps(to_house(gen.scene), indent=2)}
