@@ -37,6 +37,10 @@ class TaskGraph(Value):
     objects: list[TaskObject]
     relations: list[tuple[str, str, str]] = Field(default_factory=list)
     sliced: bool = False
+    # Set when the parser is not sure it understood the instruction (several tasks, no recognisable
+    # task, not English, unknown objects); `messages` says why, in words a designer can act on.
+    uncertain: bool = False
+    messages: list[str] = Field(default_factory=list)
     provenance: Provenance | None = None
 
     @field_validator("relations")
