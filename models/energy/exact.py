@@ -12,7 +12,7 @@ from models.constraints.evaluate import Poses, placement, relation
 from models.energy import navigation as nav
 from models.energy.prior import WALL_TOUCH, relation_prior
 from models.energy.weights import AFF_BLOCKED, AFF_OUTSIDE, EPS, PRIOR_LAMBDA, WEIGHTS
-from models.geometry import Footprint, gap, wall_clearance
+from models.geometry import Footprint, gap, intersection_area, wall_clearance
 from models.placement.problem import PlacementProblem
 from models.values import ConstraintPlan, Placement
 
@@ -68,10 +68,10 @@ def layout_energy(plan: ConstraintPlan, placements: list[Placement], problem: Pl
     rel = math.log1p(total / max(count, 1))
 
     # collision and out-of-bounds
-    overlaps = sum(polys[a].intersection(polys[b]).area ** 2 for i, a in enumerate(ids) for b in ids[i + 1:])
+    overlaps = sum(intersection_area(polys[a], polys[b]) ** 2 for i, a in enumerate(ids) for b in ids[i + 1:])
     collision = math.log1p(overlaps)
     room_poly = shapely_box(0, 0, room.width, room.depth)
-    oob = math.log1p(sum((1 - poly.intersection(room_poly).area / (poly.area + EPS)) ** 2 for poly in polys.values()))
+    oob = math.log1p(sum((1 - intersection_area(poly, room_poly) / (poly.area + EPS)) ** 2 for poly in polys.values()))
 
     # affordance: the clearance region in front of functional objects
     aff_sum, functional = 0.0, 0
@@ -83,7 +83,7 @@ def layout_energy(plan: ConstraintPlan, placements: list[Placement], problem: Pl
         zone = fps[oid].front_zone(depth).polygon()
         aff_sum += AFF_OUTSIDE * (not zone.difference(room_poly).area <= OVERLAP_TOL)
         aff_sum += AFF_BLOCKED * sum(1 for other in ids if other != oid and not problem.constraints.tied(oid, other)
-                                     and zone.intersection(polys[other]).area > OVERLAP_TOL)
+                                     and intersection_area(zone, polys[other]) > OVERLAP_TOL)
     aff = aff_sum / max(functional, 1)
 
     # navigation: can the robot reach the front of every task object from the door?
