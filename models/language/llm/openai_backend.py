@@ -101,6 +101,7 @@ class OpenAIParser:
         if len(parts) != 4:
             raise GraphTextError(f"expected 'task | whole/sliced | Target | Destination', got {line[:120]!r}")
         task, sliced, target, dest = parts
+        task = task.split()[-1] if task else task  # "Sure! place" -> "place"
         if task not in TASK_WORDS or sliced not in SLICE_WORDS:
             raise GraphTextError(f"unknown task {task!r} or slicing {sliced!r}")
         task_type = TASK_WORDS[task]
