@@ -1,5 +1,6 @@
 """Scene -> binary glTF (GLB) with trimesh: floor, walls with door and window openings, and every
-object as a box at its true size, coloured by role and named by its id (Blender's outliner shows them).
+object as its procedural low-poly shape (models.shapes, the same triangles the studio draws) at its true
+size, coloured by role (secondary parts darker) and named by its id (Blender's outliner shows them).
 
 glTF is right-handed and AI2-THOR (Unity) left-handed, so z is negated on the way out; the scene
 looks the same as in AI2-THOR instead of mirrored.
@@ -11,6 +12,7 @@ import numpy as np
 import trimesh
 
 from models.scene.walls import wall_boxes
+from models.shapes import shape_mesh
 from models.values import Scene, SceneObject
 
 ROLE_COLOURS = {"anchor": (220, 60, 60, 255), "key": (240, 160, 40, 255), "inference": (60, 120, 220, 255),
@@ -20,16 +22,29 @@ WALL_COLOUR = (235, 235, 230, 255)
 UNITY_TO_GLTF = np.diag([1.0, 1.0, -1.0, 1.0])
 
 
-def _box(extents, centre, yaw_deg: float, colour, name: str) -> trimesh.Trimesh:
-    mesh = trimesh.creation.box(extents=extents)
+def _placed(mesh: trimesh.Trimesh, centre, yaw_deg: float, name: str) -> trimesh.Trimesh:
     r = np.radians(yaw_deg)  # Unity yaw: front (sin r, cos r); a turn about +y in left-handed axes
     rot = np.array([[np.cos(r), 0, np.sin(r), 0], [0, 1, 0, 0], [-np.sin(r), 0, np.cos(r), 0], [0, 0, 0, 1]])
     move = np.eye(4)
     move[:3, 3] = centre
     mesh.apply_transform(move @ rot)
-    mesh.visual.face_colors = colour
     mesh.metadata["name"] = name
     return mesh
+
+
+def _box(extents, centre, yaw_deg: float, colour, name: str) -> trimesh.Trimesh:
+    mesh = trimesh.creation.box(extents=extents)
+    mesh.visual.face_colors = colour
+    return _placed(mesh, centre, yaw_deg, name)
+
+
+def _shape(obj: SceneObject, colour) -> trimesh.Trimesh:
+    """The object's procedural shape; faces coloured by role, darker for legs and trims."""
+    vertices, faces, shades = shape_mesh(obj.type, (obj.size.x, obj.size.y, obj.size.z))
+    mesh = trimesh.Trimesh(vertices, faces, process=False)
+    rgb = np.clip(np.outer(shades, colour[:3]), 0, 255)
+    mesh.visual.face_colors = np.column_stack([rgb, np.full(len(faces), colour[3])]).astype(np.uint8)
+    return _placed(mesh, (obj.x, obj.y, obj.z), obj.rotation, obj.id)
 
 
 def _wall_pieces(scene: Scene) -> list[trimesh.Trimesh]:
@@ -38,7 +53,7 @@ def _wall_pieces(scene: Scene) -> list[trimesh.Trimesh]:
 
 def _object_meshes(obj: SceneObject) -> list[trimesh.Trimesh]:
     colour = ROLE_COLOURS.get(obj.role, ROLE_COLOURS["context"])
-    meshes = [_box((obj.size.x, obj.size.y, obj.size.z), (obj.x, obj.y, obj.z), obj.rotation, colour, obj.id)]
+    meshes = [_shape(obj, colour)]
     for child in obj.children:
         meshes += _object_meshes(child)
     return meshes
