@@ -58,9 +58,18 @@ def load_plan(path: str):
         raise _plan_error(path, e) from e
 
 
+def _parser_of(args):
+    """The instruction parser `--parser` names (None: the pipeline's default)."""
+    if not getattr(args, "parser", None):
+        return None
+    from models.language.combined import make_parser
+    options = {"base_url": args.openai_url, "model": args.openai_model} if args.parser == "openai" else {}
+    return make_parser(args.parser, **options)
+
+
 def cmd_parse(args) -> int:
     from app.pipeline import Pipeline, dump
-    pipeline = Pipeline()
+    pipeline = Pipeline(parser=_parser_of(args))
     if args.batch:
         out = open(args.out, "w") if args.out else sys.stdout
         try:
@@ -104,7 +113,8 @@ def cmd_place(args) -> int:
 
 def cmd_generate(args) -> int:
     from app.pipeline import Pipeline, write_generation
-    gen = Pipeline().generate(args.instruction, args.room_type, seed=args.seed, solver=args.solver)
+    gen = Pipeline(parser=_parser_of(args)).generate(args.instruction, args.room_type, seed=args.seed,
+                                                     solver=args.solver)
     paths = write_generation(gen, Path(args.out))
     for p in paths:
         print(p)
@@ -155,6 +165,19 @@ def cmd_studio(args) -> int:
     return 0
 
 
+def cmd_train_language(args) -> int:
+    from models.language.llm.data import training_examples
+    from models.language.llm.train import TrainConfig, train
+    cfg = TrainConfig(out=args.out, base=args.base, seed=args.seed, epochs=args.epochs, max_steps=args.max_steps,
+                      batch_size=args.batch_size, lr=args.lr, lora_r=args.lora_r, lora_alpha=args.lora_alpha,
+                      lora_dropout=args.lora_dropout, lora_layers=args.lora_layers or None,
+                      save_every=args.save_every, limit=args.limit, threads=args.threads)
+    adapter = train(cfg, training_examples())
+    print(f"adapter: {adapter}  (loss curves: {Path(args.out) / 'loss.csv'}, {Path(args.out) / 'loss.png'})")
+    print(f"use it: cp {adapter}/* models/weights/lora/   or   LoraParser(adapter='{adapter}')")
+    return 0
+
+
 def cmd_bench(args) -> int:
     from app.bench import run_benchmark
     return run_benchmark(args.what, args)
@@ -173,6 +196,11 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--batch", metavar="IN.jsonl", help='many instructions, one {"id", "instruction", '
                    '"room_type"?} per line')
     p.add_argument("--out", metavar="OUT.jsonl", help="with --batch: write here instead of stdout")
+    p.add_argument("--parser", choices=["combined", "rules", "lora", "openai"], default=None,
+                   help="instruction parser (default: combined = rules + the LoRA language model)")
+    p.add_argument("--openai-url", default=None, help="--parser openai: the server's base URL, e.g. "
+                   "http://127.0.0.1:8000/v1 (or H3DS_OPENAI_BASE_URL)")
+    p.add_argument("--openai-model", default=None, help="--parser openai: the served model's name")
     p.set_defaults(run=cmd_parse)
 
     p = sub.add_parser("place", help="place the objects of constraint plan(s) -> layout JSON")
@@ -189,6 +217,11 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--seed", type=int, default=0, help="same seed, same scene")
     p.add_argument("--solver", default=None)
     p.add_argument("--out", required=True, metavar="DIR")
+    p.add_argument("--parser", choices=["combined", "rules", "lora", "openai"], default=None,
+                   help="instruction parser (default: combined = rules + the LoRA language model)")
+    p.add_argument("--openai-url", default=None, help="--parser openai: the server's base URL, e.g. "
+                   "http://127.0.0.1:8000/v1 (or H3DS_OPENAI_BASE_URL)")
+    p.add_argument("--openai-model", default=None, help="--parser openai: the served model's name")
     p.set_defaults(run=cmd_generate)
 
     p = sub.add_parser("studio", help="the browser studio and its HTTP API (prints the URLs)")
@@ -202,7 +235,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.set_defaults(run=cmd_demo)
 
     p = sub.add_parser("bench", help="benchmarks that print figures: parser, generate, placement, energy")
-    p.add_argument("what", choices=["parser", "generate", "placement", "energy", "studio"])
+    p.add_argument("what", choices=["parser", "generate", "placement", "energy", "studio", "language"])
     p.add_argument("--n", type=int, default=30, help="instructions (generate) or plans (placement) to run")
     p.add_argument("--split", default="valid_unseen", help="ALFRED split to score (parser)")
     p.add_argument("--dataset", default="seen", choices=["seen", "unseen_a", "unseen_b"],
@@ -211,7 +244,29 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--seeds", type=int, default=5, help="placement: seeds per plan")
     p.add_argument("--budget", type=float, default=None, help="placement: time budget per plan (s)")
     p.add_argument("--out", default=None, help="placement: folder for results and plots")
+    p.add_argument("--sets", default=None, help="language: comma-separated evaluation sets (default: all)")
+    p.add_argument("--per-set", type=int, default=0, help="language: instructions per set (0: all)")
     p.set_defaults(run=cmd_bench)
+
+    p = sub.add_parser("train", help="train a model (seeded, resumable, loss curves): language")
+    train = p.add_subparsers(dest="what", required=True, parser_class=Parser)
+    t = train.add_parser("language", help="LoRA fine-tuning of f_theta1 (instruction -> compact task graph)")
+    t.add_argument("--out", default="runs/language", metavar="DIR", help="checkpoints, loss.csv, loss.png, adapter/")
+    t.add_argument("--base", default="smollm2-135m-instruct", help="the bundled SmolLM2-135M-Instruct, or any "
+                   "Hugging Face causal LM folder (e.g. a local Falcon-7B)")
+    t.add_argument("--seed", type=int, default=0)
+    t.add_argument("--epochs", type=float, default=1.0)
+    t.add_argument("--max-steps", type=int, default=None, help="stop after N optimiser steps (overrides --epochs)")
+    t.add_argument("--batch-size", type=int, default=16)
+    t.add_argument("--lr", type=float, default=1e-3)
+    t.add_argument("--lora-r", type=int, default=16, help="the paper: 32")
+    t.add_argument("--lora-alpha", type=float, default=21.5, help="the paper: 43")
+    t.add_argument("--lora-dropout", type=float, default=0.05, help="the paper: 0.05")
+    t.add_argument("--lora-layers", type=int, default=15, help="LoRA on the top N blocks (0: all)")
+    t.add_argument("--save-every", type=int, default=100, help="checkpoint and held-out check every N steps")
+    t.add_argument("--limit", type=int, default=None, help="train on the first N examples only")
+    t.add_argument("--threads", type=int, default=None, help="torch CPU threads")
+    t.set_defaults(run=cmd_train_language)
 
     p = sub.add_parser("data", help="rebuild the bundled constraint datasets (deterministic)")
     p.add_argument("what", choices=["build"])

@@ -108,3 +108,12 @@ def test_missing_adapter_is_a_clear_error(tmp_path, tiny):
     from models.language.llm.parser import LoraParser
     with pytest.raises(FileNotFoundError, match="no LoRA adapter"):
         LoraParser(adapter=tmp_path, base=str(tiny)).parse("Put the apple in the sink")
+
+
+def test_train_language_command_writes_curves_and_adapter(tiny, tmp_path, capsys):
+    from app.cli import main
+    out = tmp_path / "run"
+    assert main(["train", "language", "--base", str(tiny), "--out", str(out), "--max-steps", "2", "--batch-size", "2",
+                 "--limit", "30", "--lora-r", "2", "--lora-alpha", "4", "--lora-layers", "1", "--save-every", "1"]) == 0
+    assert "adapter:" in capsys.readouterr().out
+    assert (out / "adapter" / "adapter_config.json").exists() and (out / "loss.png").exists()

@@ -107,3 +107,13 @@ def constrained_decode(model, grammar: Grammar, prompt_ids: list[int]) -> Decode
             logps.append(lp)
     task, sliced, target, dest = values
     return Decoded(GraphFields(TASK_WORDS[task], sliced == "sliced", target, dest), tuple(logps), passes)
+
+
+def free_decode(model, tokenizer, prompt_ids: list[int], max_new_tokens: int = 24) -> str:
+    """Unconstrained greedy decoding (the alternative to the trie, kept to measure it against)."""
+    import torch
+    with torch.inference_mode():
+        out = model.generate(torch.tensor([prompt_ids]), attention_mask=torch.ones(1, len(prompt_ids), dtype=torch.long),
+                             max_new_tokens=max_new_tokens, do_sample=False, eos_token_id=tokenizer.eos_token_id,
+                             pad_token_id=tokenizer.eos_token_id)
+    return tokenizer.decode(out[0, len(prompt_ids):], skip_special_tokens=True)

@@ -39,7 +39,7 @@ class TrainConfig:
     lora_layers: int | None = 15  # LoRA on the top N transformer blocks (None: all)
     room_dropout: float = 0.3  # share of examples shown "Room: unknown"
     save_every: int = 50
-    val_size: int = 64
+    val_size: int = 48
     limit: int | None = None  # use only the first N training examples (tests)
     threads: int | None = None
 
@@ -163,7 +163,8 @@ def train(cfg: TrainConfig, train_rows: list[Example], progress: bool = True) ->
     rows = list(train_rows)[:cfg.limit] if cfg.limit else list(train_rows)
     order_rng = random.Random(cfg.seed)
     order_rng.shuffle(rows)
-    val, rows = rows[:cfg.val_size], rows[cfg.val_size:]
+    n_val = min(cfg.val_size, len(rows) // 5)  # a tiny run keeps most of its examples for training
+    val, rows = rows[:n_val], rows[n_val:]
     room_rng = random.Random(cfg.seed + 1)
     rows = [Example(r.instruction, None if room_rng.random() < cfg.room_dropout else r.room_type, r.fields)
             for r in rows]
@@ -173,6 +174,8 @@ def train(cfg: TrainConfig, train_rows: list[Example], progress: bool = True) ->
     model = lora_model(model, cfg)
     grammar = Grammar(tok)
     steps_per_epoch = math.ceil(len(rows) / cfg.batch_size)
+    if not rows or not val:
+        raise ValueError(f"too few training examples ({len(rows) + len(val)}) to hold some out")
     total = cfg.max_steps or max(1, int(cfg.epochs * steps_per_epoch))
     params = [p for p in model.parameters() if p.requires_grad]
     opt = torch.optim.AdamW(params, lr=cfg.lr, weight_decay=0.0)

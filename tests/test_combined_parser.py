@@ -1,0 +1,90 @@
+"""The default parser: rules + the LoRA language model, each where it is strong, rules as the fallback."""
+
+from __future__ import annotations
+
+import pytest
+
+from models.language import InstructionError, RuleParser
+from models.language.combined import CombinedParser, make_parser
+from models.language.llm.graph_text import GraphFields
+from models.language.llm.parser import LoraParser
+
+pytest.importorskip("peft")
+
+
+@pytest.fixture(scope="module")
+def tiny_adapter(tmp_path_factory):
+    from llm_tiny import build_tiny_lm
+
+    from models.language.llm.data import training_examples
+    from models.language.llm.train import TrainConfig, train
+    base = build_tiny_lm(tmp_path_factory.mktemp("tiny-lm"))
+    out = tmp_path_factory.mktemp("run")
+    adapter = train(TrainConfig(out=str(out), base=str(base), max_steps=2, batch_size=4, val_size=2, limit=20,
+                                lora_r=4, lora_alpha=8, lora_layers=1), training_examples(), progress=False)
+    return adapter, base
+
+
+@pytest.fixture(scope="module")
+def combined(tiny_adapter):
+    adapter, base = tiny_adapter
+    return CombinedParser(lm=LoraParser(adapter=adapter, base=str(base)))
+
+
+def test_model_reading_kept_when_it_names_what_the_instruction_names(combined):
+    text = "Put a chilled apple on the table"
+    ruled = RuleParser().parse(text, "kitchen")
+    fields = GraphFields("pick_cool_then_place_in_recep", False, "Apple", "DiningTable")
+    graph = combined.merge(text, "kitchen", ruled, None, fields)
+    assert graph.provenance.method == "combined"
+    assert set(map(tuple, graph.relations)) == {("Apple", "cooled_in", "Fridge"), ("Apple", "placed_at", "DiningTable")}
+    roles = {o.type: o.roles for o in graph.objects}
+    assert roles == {"Apple": ["key"], "Fridge": ["inference"], "DiningTable": ["key", "anchor"]}
+
+
+def test_unnamed_model_types_give_way_to_named_rule_types(combined):
+    text = "Put a chilled apple on the counter"
+    ruled = RuleParser().parse(text, "kitchen")
+    # the model wrote a frequent training target and destination that the instruction does not name
+    fields = GraphFields("pick_cool_then_place_in_recep", False, "Tomato", "DiningTable")
+    graph = combined.merge(text, "kitchen", ruled, None, fields)
+    assert ("Apple", "placed_at", "CounterTop") in graph.relations
+    assert "Tomato" not in {o.type for o in graph.objects}
+    # its task reading (cool) is kept: the rules only fix the object names
+    assert graph.task_type == "pick_cool_then_place_in_recep"
+
+
+def test_instruction_naming_no_object_is_an_error_not_an_invented_type(combined):
+    with pytest.raises(InstructionError, match="no object to pick up"):
+        combined.parse("Hello there, how are you today?")
+
+
+def test_rules_read_misses_are_flagged_uncertain_when_the_model_names_a_named_type(combined):
+    text = "Grab the apple"
+    failure = InstructionError("no object to pick up was recognised")
+    fields = GraphFields("pick_and_place_simple", False, "Apple", "CounterTop")
+    graph = combined.merge(text, None, None, failure, fields)
+    assert graph.uncertain and "could not read" in graph.messages[0]
+    with pytest.raises(InstructionError):
+        combined.merge(text, None, None, failure, GraphFields("pick_and_place_simple", False, "Mug", "CounterTop"))
+
+
+def test_end_to_end_graph_is_valid_and_fast_to_construct(combined):
+    graph = combined.parse("Put a chilled bread on the counter", "kitchen")
+    assert graph.provenance.method == "combined" and graph.anchor is not None
+    assert {"Bread", "CounterTop"} <= {o.type for o in graph.objects}  # both named: the rules hold them
+
+
+def test_without_a_language_model_the_rules_answer_and_say_so(tmp_path):
+    parser = CombinedParser(lm=LoraParser(adapter=tmp_path))
+    graph = parser.parse("Put a chilled bread on the counter", "kitchen")
+    assert graph.provenance.method == "rules"
+    assert any("language model is not available" in m for m in graph.messages)
+
+
+def test_parsers_by_name():
+    assert make_parser("rules").name == "rules"
+    assert make_parser("combined").name == "combined"
+    assert make_parser("openai", base_url="http://127.0.0.1:9/v1").name == "openai"
+    with pytest.raises(ValueError, match="unknown parser"):
+        make_parser("gpt")
