@@ -1,9 +1,10 @@
 """One designer's session in one browser tab: its own GUI handles, 3D view and state (viser per-client).
 
-Panels: Task (instruction, room type, seed, solver, Generate; the task graph with role corrections),
+Above the tabs: the status and progress lines, the view buttons (fit, top, VR user's view), undo / redo,
+the live checks and the picked object's panel (pose fields, 90 degree turns), so they show on every tab.
+Tabs: Task (instruction, room type, seed, solver, Generate; the task graph with role corrections),
 Placement (play / pause / step / speed, heat-map, energy plot), Constraints (per-object list with
-dropdowns, raw text, metrics, the picked object's properties), Scenes (accept & save, stored scenes
-and versions, downloads) and Headset (reserved for the headset bridge).
+dropdowns, raw text, metrics), Scenes (accept & save, stored scenes and versions, downloads) and Headset.
 """
 
 from __future__ import annotations
@@ -11,22 +12,27 @@ from __future__ import annotations
 import contextlib
 import json
 import logging
+import re
 import threading
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 import viser
+from viser import _messages
 
 from app.pipeline import Generation, Pipeline, generation_of, kept_before_edit
+from frontend import camera
+from frontend.checks import Finding, run_checks, summary
 from frontend.graph_image import render as render_graph
-from frontend.view import SceneView, rotation_of, world
+from frontend.history import History
+from frontend.view import SceneView, world
 from models.constraints import GLOBALS, RELATIONS, Constraint, read_constraints, write_constraints
 from models.energy.exact import layout_energy
 from models.exports.glb import ROLE_COLOURS, to_glb
 from models.exports.procthor_house import to_house
 from models.language import InstructionError
-from models.metrics import scene_metrics
+from models.metrics import SceneMetrics
 from models.placement import SOLVERS, PlacementStep
 from models.values import TaskGraph, TaskObject
 from models.world import ROOM_TYPES, catalogue
@@ -38,32 +44,71 @@ ROLE_MARK = {role: f'<span style="color:rgb{tuple(ROLE_COLOURS[role][:3])}">&#96
 ROLE_CHOICES = ("key", "anchor", "inference", "key + anchor", "anchor + inference")
 ENERGY_TERMS = ("rel", "collision", "oob", "nav", "aff", "total")
 DEFAULT_INSTRUCTION = "Put a chilled bread on the counter"
+DEFAULT_SOLVER = "dfs"
 LIVE_RESCORE_S = 0.3
+PROGRESS_S = 0.2  # the progress line is updated at most this often while placing
+UNSAVED_JS = """
+if (!window.__h3dsUnsavedHook) {
+  window.__h3dsUnsavedHook = true;
+  window.addEventListener('beforeunload', (e) => {
+    if (window.__h3dsUnsaved) { e.preventDefault(); e.returnValue = ''; }
+  });
+}
+"""
+
+
+@dataclass(frozen=True)
+class Values:
+    """What undo restores: the scene and everything derived from the designer's edits."""
+
+    gen: Generation | None = None
+    steps: tuple[PlacementStep, ...] = ()
+    edits: tuple[Edit, ...] = ()
+    reference: SceneMetrics | None = None  # the placer's result the designer started from
 
 
 @dataclass
 class State:
-    gen: Generation | None = None
-    steps: list[PlacementStep] = field(default_factory=list)
+    values: Values = field(default_factory=Values)
     shown: int = 0  # objects shown so far in the step animation
     playing: bool = False
-    edits: list[Edit] = field(default_factory=list)
     scene_id: int | None = None
     seed: int = 0
-    solver: str = "dfs"
+    solver: str = DEFAULT_SOLVER
     runs: int = 0  # scenes shown in this tab so far (numbers the status line)
+    findings: list[Finding] = field(default_factory=list)
+    busy: bool = False
+    unsaved: bool = False
+    view: str = "fit"  # fit | top | vr: what a refit after a window resize restores
+    canvas: tuple[int, int] = (0, 0)
+
+    @property
+    def gen(self) -> Generation | None:
+        return self.values.gen
+
+    @property
+    def steps(self) -> tuple[PlacementStep, ...]:
+        return self.values.steps
+
+    @property
+    def edits(self) -> tuple[Edit, ...]:
+        return self.values.edits
 
 
 class StudioSession:
     def __init__(self, client: viser.ClientHandle, pipeline: Pipeline, store: Store):
         self.client, self.pipeline, self.store = client, pipeline, store
         self.state = State()
+        self.history = History()
         self.lock = threading.RLock()
         self.view = SceneView(client.scene)
         self.view.on_pick = self.pick
         self.controls = None
+        self.selected: str | None = None
         self._last_live = 0.0
+        self._run_js(camera.ORBIT_LIMIT_JS + UNSAVED_JS)
         self._build_gui()
+        client.camera.on_update(self._camera_moved)
 
     # ---- GUI --------------------------------------------------------------------------------------
 
@@ -71,14 +116,32 @@ class StudioSession:
         gui = self.client.gui
         gui.configure_theme(control_width="large")
         self.status = gui.add_markdown("Type an instruction and press **Generate**.")
+        self.progress = gui.add_markdown("")
+        views = gui.add_button_group("View", ("Fit room", "Top view", "VR user's view"))
+        views.on_click(lambda e: self.set_view({"Fit room": "fit", "Top view": "top",
+                                                "VR user's view": "vr"}[e.target.value]))
+        edits = gui.add_button_group("Edits", ("Undo", "Redo"))
+        edits.on_click(lambda e: self.undo() if e.target.value == "Undo" else self.redo())
+        self.checks_md = gui.add_markdown("")
+        self.picked = gui.add_folder("Picked object", visible=False)
+        with self.picked:
+            self.picked_md = gui.add_markdown("")
+            self.pose_x = gui.add_number("x (m)", 0.0, step=0.05)
+            self.pose_z = gui.add_number("z (m)", 0.0, step=0.05)
+            self.pose_rot = gui.add_number("Rotation (°)", 0.0, step=90)
+            gui.add_button("Apply pose").on_click(lambda _: self.apply_pose())
+            turns = gui.add_button_group("Turn", ("-90°", "+90°", "Deselect"))
+            turns.on_click(lambda e: self.pick(None) if e.target.value == "Deselect"
+                           else self.turn(90 if e.target.value == "+90°" else -90))
         tabs = gui.add_tab_group()
 
         with tabs.add_tab("Task"):
             self.instruction = gui.add_text("Instruction", DEFAULT_INSTRUCTION)
             self.room = gui.add_dropdown("Room type", ("infer",) + ROOM_TYPES, initial_value="kitchen")
             self.seed = gui.add_number("Seed", 0, min=0, step=1)
-            self.solver = gui.add_dropdown("Solver", tuple(sorted(SOLVERS)), initial_value="dfs")
-            gui.add_button("Generate", color="green").on_click(lambda _: self.generate())
+            self.solver = gui.add_dropdown("Solver", tuple(sorted(SOLVERS)), initial_value=DEFAULT_SOLVER)
+            self.generate_button = gui.add_button("Generate", color="green")
+            self.generate_button.on_click(lambda _: self.generate())
             self.graph_md = gui.add_markdown("")
             self.graph_img = gui.add_image(np.full((300, 480, 3), 255, np.uint8), label="Task scene graph",
                                            visible=False)
@@ -89,7 +152,8 @@ class StudioSession:
                 self.new_object = gui.add_text("Add object type", "")
                 gui.add_button("Add object").on_click(lambda _: self.add_object())
                 gui.add_button("Remove object").on_click(lambda _: self.remove_object())
-                gui.add_button("Regenerate from graph").on_click(lambda _: self.regenerate())
+                self.regenerate_button = gui.add_button("Regenerate from graph")
+                self.regenerate_button.on_click(lambda _: self.regenerate())
 
         with tabs.add_tab("Placement"):
             buttons = gui.add_button_group("Animation", ("Play", "Pause", "Step", "Show all"))
@@ -116,7 +180,6 @@ class StudioSession:
             gui.add_button("Apply text").on_click(lambda _: self.apply_text(self.c_text.value))
             self.c_message = gui.add_markdown("")
             self.metrics_md = gui.add_markdown("")
-            self.picked_md = gui.add_markdown("")
 
         with tabs.add_tab("Scenes"):
             self.save_name = gui.add_text("Name", "")
@@ -128,6 +191,8 @@ class StudioSession:
             gui.add_button("Refresh list").on_click(lambda _: self.list_scenes())
             gui.add_button("Download house JSON").on_click(lambda _: self.download("house"))
             gui.add_button("Download GLB").on_click(lambda _: self.download("glb"))
+            gui.add_markdown("Downloads are the selected stored version (the scene on screen if none is "
+                             "stored yet), named `<scene>-v<n>-house.json` and `<scene>-v<n>.glb`.")
 
         with tabs.add_tab("Headset"):
             gui.add_button("Send to headset", disabled=True, hint="arrives with the headset bridge")
@@ -137,55 +202,114 @@ class StudioSession:
     def say(self, text: str) -> None:
         self.status.content = text
 
+    def _run_js(self, source: str) -> None:
+        """Run a snippet in this tab (viser's own message for it; there is no public method)."""
+        self.client._websock_connection.queue_message(_messages.RunJavascriptMessage(source=source))
+
+    def _set_unsaved(self, unsaved: bool) -> None:
+        """Track unsaved work; while there is some, leaving or reloading the page asks first."""
+        if unsaved != self.state.unsaved:
+            self.state.unsaved = unsaved
+            self._run_js(f"window.__h3dsUnsaved = {'true' if unsaved else 'false'};")
+
+    def _confirm(self, title: str, text: str, yes: str, action) -> None:
+        """A modal asking the designer to confirm; `action` runs only on `yes`."""
+        gui = self.client.gui
+        with gui.add_modal(title) as modal:
+            gui.add_markdown(text)
+            gui.add_button(yes, color="red").on_click(lambda _: (modal.close(), action()))
+            gui.add_button("Cancel").on_click(lambda _: modal.close())
+
+    # ---- busy state -------------------------------------------------------------------------------
+
+    @contextlib.contextmanager
+    def _busy(self, what: str):
+        """Generate and Regenerate are disabled while a pipeline step runs; a second click is ignored."""
+        with self.lock:
+            if self.state.busy:
+                yield False
+                return
+            self.state.busy = True
+        self.generate_button.disabled = self.regenerate_button.disabled = True
+        self.progress.content = f"⏳ {what}…"
+        try:
+            yield True
+        finally:
+            self.generate_button.disabled = self.regenerate_button.disabled = False
+            self.progress.content = ""
+            self.state.busy = False
+
+    def _observer(self, steps: list[PlacementStep]):
+        last = [0.0]
+
+        def observe(step: PlacementStep) -> None:
+            steps.append(step)
+            now = time.perf_counter()
+            if now - last[0] > PROGRESS_S:
+                last[0] = now
+                self.progress.content = f"⏳ Placing objects: {len(steps)} placed so far (last `{step.object_id}`)…"
+        return observe
+
     # ---- generating -------------------------------------------------------------------------------
 
     def generate(self) -> None:
-        room = None if self.room.value == "infer" else self.room.value
-        try:
-            graph = self.pipeline.parse(self.instruction.value, room)
-        except (InstructionError, ValueError) as e:
-            self.say(f"**Error:** {e}")
-            return
-        self._run(lambda observer: self.pipeline.generate_from_graph(graph, int(self.seed.value), self.solver.value,
-                                                                     observer), fresh=True)
+        with self._busy("Reading the instruction") as free:
+            if not free:
+                return
+            room = None if self.room.value == "infer" else self.room.value
+            try:
+                graph = self.pipeline.parse(self.instruction.value, room)
+            except (InstructionError, ValueError) as e:
+                self._clear_graph()
+                self.say(f"**Error:** {e} The task graph was cleared; the scene below is the previous one.")
+                return
+            self.progress.content = "⏳ Planning the room and placing objects…"
+            seed, solver = int(self.seed.value), self.solver.value
+            self._run(lambda observer: self.pipeline.generate_from_graph(graph, seed, solver, observer),
+                      fresh=True, note=_parser_note(graph))
 
-    def _run(self, make, fresh: bool) -> None:
-        """Run a pipeline step with an observer collecting placement steps, then show the result."""
+    def _clear_graph(self) -> None:
+        self.graph_md.content = ""
+        self.graph_img.visible = False
+
+    def _run(self, make, fresh: bool, note: str = "", record: str | None = None, keep_reference: bool = False) -> bool:
+        """Run a pipeline step with an observer collecting placement steps, then show the result.
+
+        `fresh`: a new scene (no edits, not stored, camera framed); `record`: an undoable edit's label;
+        `keep_reference`: the checks compare with the metrics from before (a constraint edit)."""
         started = time.perf_counter()
         steps: list[PlacementStep] = []
         try:
-            gen = make(steps.append)
+            gen = make(self._observer(steps))
         except Exception as e:  # shown to the designer; the stored scenes and the current one are untouched
             logging.getLogger(__name__).exception("pipeline step failed")
             self.say(f"**Error:** {type(e).__name__}: {e}")
-            return
+            return False
         with self.lock:
+            if record is not None:
+                self.history.record(record, self.state.values)
             self.state.playing = False
-            self.state.gen, self.state.steps = gen, steps
             self.state.seed, self.state.solver = int(self.seed.value), self.solver.value
+            edits = () if fresh else self.state.edits
+            reference = self.state.values.reference if keep_reference else None
+            self.state.values = Values(gen, tuple(steps), edits, reference)
             if fresh:
-                self.state.edits, self.state.scene_id = [], None
+                self.state.scene_id = None
+                self.history.clear()
             self.state.shown = len(steps)
             self.state.runs += 1
         self.redraw()
         if fresh:
-            self.look_at_room()
+            self.set_view("fit" if self.state.view != "top" else "top")
         self.refresh_panels()
+        self.refresh_checks()
+        self._set_unsaved(True)
         placed = len(gen.layout.placements)
         self.say(f"Scene ready (#{self.state.runs}): {placed} placed, {len(gen.layout.unplaced)} unplaced "
-                 f"({1000 * (time.perf_counter() - started):.0f} ms). Room: **{gen.task_graph.room_type}**.")
-        threading.Thread(target=self._after_scene, args=(gen, steps), daemon=True).start()
-
-    def _after_scene(self, gen: Generation, steps: list[PlacementStep]) -> None:
-        """The slower read-outs (metrics, per-step energies) follow the scene instead of delaying it."""
-        self.show_metrics()
-        self._energy_curve(gen, steps)
-
-    def look_at_room(self) -> None:
-        room = self.state.gen.scene.room
-        size = max(room.width, room.depth)
-        self.client.camera.look_at = world(room.width / 2, 0.0, room.depth / 2)
-        self.client.camera.position = world(room.width / 2, 1.3 * size, -0.55 * size)
+                 f"({1000 * (time.perf_counter() - started):.0f} ms). Room: **{gen.task_graph.room_type}**."
+                 + (f"\n\n{note}" if note else ""))
+        threading.Thread(target=self._energy_curve, args=(gen, steps), daemon=True).start()
+        return True
 
     def redraw(self) -> None:
         gen = self.state.gen
@@ -194,11 +318,10 @@ class StudioSession:
         with self.client.atomic():
             self.view.clear()
             self.view.draw_room(gen.scene)
-            visible = self._visible()
-            self.view.draw_objects(gen.scene, visible)
+            self.view.draw_objects(gen.scene, self._visible())
             step = self.state.steps[self.state.shown - 1] if 0 < self.state.shown <= len(self.state.steps) else None
             self.view.heat_map(step if self.heat.value and self.state.shown < len(self.state.steps) else None)
-        self.controls = None
+        self._place_controls()
 
     def _visible(self) -> set[str] | None:
         if self.state.shown >= len(self.state.steps):
@@ -206,6 +329,46 @@ class StudioSession:
         placed_ids = {s.object_id for s in self.state.steps[:self.state.shown]}
         scene = self.state.gen.scene
         return placed_ids | {c.id for o in scene.objects if o.id in placed_ids for c in o.children}
+
+    # ---- the camera -------------------------------------------------------------------------------
+
+    def set_view(self, mode: str) -> None:
+        """Frame the room beside the panel ("fit"), look straight down ("top", near-orthographic) or
+        stand where the VR user stands ("vr")."""
+        gen = self.state.gen
+        cam = self.client.camera
+        if gen is None:
+            return
+        try:
+            width, height = cam.image_width, cam.image_height
+        except AssertionError:  # the browser has not reported its camera yet
+            return
+        room = gen.scene.room
+        self.state.view, self.state.canvas = mode, (width, height)
+        if mode == "vr" and gen.scene.vr_anchor is not None:
+            v = gen.scene.vr_anchor
+            position, look_at = camera.vr_view(v.x, v.z, v.rotation)
+            fov = camera.DEFAULT_FOV
+        elif mode == "top":
+            fov = camera.TOP_FOV
+            position, look_at = camera.fit(camera.room_points(room.width, room.depth, 0.0), (0.0, -1.0, -1e-4),
+                                           fov, width, height)
+        else:
+            fov = camera.DEFAULT_FOV
+            direction = camera.framing_direction(cam.position, cam.look_at) if mode == "fit" and \
+                self.state.runs > 1 else camera.DEFAULT_DIRECTION
+            position, look_at = camera.fit(camera.room_points(room.width, room.depth), direction, fov,
+                                           width, height)
+        with self.client.atomic():
+            cam.fov = fov
+            cam.position = position  # position first: viser moves look-at along with a new position
+            cam.look_at = look_at
+
+    def _camera_moved(self, cam) -> None:
+        """Refit after the window is resized (the canvas size changed), keeping the current kind of view."""
+        size = (cam.image_width, cam.image_height)
+        if self.state.gen is not None and self.state.canvas != (0, 0) and size != self.state.canvas:
+            self.set_view(self.state.view)
 
     # ---- the step animation -----------------------------------------------------------------------
 
@@ -239,7 +402,8 @@ class StudioSession:
         self.state.playing = False
 
     def _advance(self) -> None:
-        """Show the next step: heat-map of its candidates, then the object settling into place."""
+        """Show the next step: heat-map of its candidates, then the object settling into its current pose
+        (where the placer put it, or where the designer moved it since)."""
         with self.lock:
             steps = self.state.steps
             if self.state.shown >= len(steps):
@@ -248,17 +412,18 @@ class StudioSession:
             self.state.shown += 1
         if self.heat.value:
             self.view.heat_map(step)
-        where = "no valid position (unplaced)" if step.x is None else \
-            f"x {step.x:.2f} m, z {step.z:.2f} m, facing {step.rotation:.0f}°"
+        scene = self.state.gen.scene
+        obj = next((o for o in scene.objects if o.id == step.object_id), None)
+        where = "no valid position (unplaced)" if obj is None else \
+            f"x {obj.x:.2f} m, z {obj.z:.2f} m, facing {obj.rotation:.0f}°"
         self.step_md.content = f"**Step {self.state.shown} / {len(steps)}**: placing `{step.object_id}` at {where}"
-        if step.x is None:
+        if obj is None:
             return
         frames = max(2, min(8, int(20 / float(self.speed.value))))  # fewer frames when playing fast
         duration = min(0.25, 0.8 / float(self.speed.value))
         for k in range(1, frames + 1):
-            self.view.drop_in(step.object_id, self.state.gen.scene, k / frames)
-            for child in next((o.children for o in self.state.gen.scene.objects if o.id == step.object_id), []):
-                self.view.drop_in(child.id, self.state.gen.scene, k / frames)
+            for o in [obj, *obj.children]:
+                self.view.drop_in(o.id, scene, k / frames)
             time.sleep(duration / frames)
         if self.state.shown == len(steps):
             self.view.heat_map(None)
@@ -285,12 +450,10 @@ class StudioSession:
         for role, title in (("key", "Key objects"), ("anchor", "Anchor object"), ("inference", "Inference objects")):
             names = [o.type for o in g.objects if role in o.roles]
             lines.append(f"{ROLE_MARK[role]} **{title}:** {', '.join(names) if names else '—'}")
-        lines.append("")
         lines += ["", "**Relations:** " + ("; ".join(f"{a} *{r}* {b}" for a, r, b in g.relations) or "—")]
         self.graph_md.content = "\n\n".join(lines)
         threading.Thread(target=self._draw_graph, args=(g,), daemon=True).start()
-        types = tuple(o.type for o in g.objects) or ("-",)
-        self.role_object.options = types
+        self.role_object.options = tuple(o.type for o in g.objects) or ("-",)
         ids = tuple(o.id for o in gen.plan.objects) or ("-",)
         self.c_object.options = ids
         self.c_target.options = ids
@@ -312,9 +475,15 @@ class StudioSession:
         items = [f"- `{oc.placement}`"] + [f"- `{c.name}` → `{c.target}`" for c in oc.relations]
         self.c_list.content = f"**{oc.object_id}**\n\n" + "\n".join(items)
 
-    def show_metrics(self, gen: Generation | None = None) -> None:
+    def refresh_checks(self, gen: Generation | None = None) -> list[Finding]:
+        """Run the checks on the scene (or on a drag in progress) and show them with the metrics."""
         gen = gen or self.state.gen
-        m = scene_metrics(gen.plan, gen.layout)
+        findings, m = run_checks(gen.plan, gen.layout, gen.scene, self.state.values.reference)
+        if self.state.values.reference is None and gen is self.state.gen:
+            self.state.values = replace(self.state.values, reference=m)
+        if gen is self.state.gen:
+            self.state.findings = findings
+        self.checks_md.content = summary(findings)
         e = layout_energy(gen.plan, gen.layout.placements).as_dict()
         self.metrics_md.content = (
             "| metric | value |\n| --- | --- |\n"
@@ -322,61 +491,132 @@ class StudioSession:
             f"| Key_NAV | {100 * m.key_nav:.0f} % |\n| OOB | {100 * m.oob:.0f} % |\n| collisions | {m.collisions} |\n"
             f"| constraints met | {100 * m.constraint_satisfaction:.0f} % |\n"
             f"| energy (total) | {e['total']:.3f} |")
+        return findings
 
-    # ---- picking and dragging ---------------------------------------------------------------------
+    # ---- picking and moving -----------------------------------------------------------------------
 
-    def pick(self, object_id: str) -> None:
+    def pick(self, object_id: str | None) -> None:
+        """Select an object (a click on it): highlighted, its panel above the tabs, the gizmo on its top."""
         gen = self.state.gen
         if gen is None:
             return
         obj = next((o for o in gen.scene.all_objects() if o.id == object_id), None)
+        self.selected = obj.id if obj is not None else None
+        self.view.select(self.selected, gen.scene)
+        self.picked.visible = obj is not None
         if obj is None:
+            self._place_controls()
             return
+        self._show_picked(obj)
+        if obj.id in {o.id for o in gen.plan.objects}:
+            self.c_object.value = obj.id
+            self.show_constraints()
+        self._place_controls()
+
+    def _show_picked(self, obj) -> None:
         cat = catalogue()
         t = cat.host(obj.type) if obj.type in cat else None
         flags = ", ".join(k for k, v in (t.flags.items() if t else []) if v) or "—"
+        self.picked.label = f"Picked: {obj.id}"
         self.picked_md.content = (f"**{obj.id}** ({obj.type}, {obj.role})\n\nasset `{obj.asset_id}` · "
                                   f"{obj.size.x:.2f} × {obj.size.z:.2f} × {obj.size.y:.2f} m · at ({obj.x:.2f}, "
                                   f"{obj.z:.2f}) facing {obj.rotation:.0f}°\n\n{flags}")
-        if object_id in {o.id for o in gen.plan.objects}:
-            self.c_object.value = object_id
-            self.show_constraints()
-            self._attach_controls(obj)
+        self.pose_x.value, self.pose_z.value, self.pose_rot.value = round(obj.x, 3), round(obj.z, 3), obj.rotation
 
-    def _attach_controls(self, obj) -> None:
-        if self.controls is not None:
-            self.controls.remove()
-        self.controls = self.client.scene.add_transform_controls(
-            "/drag", scale=0.6, active_axes=(True, False, True), position=world(obj.x, 0.02, obj.z),
-            disable_sliders=True)
-        self.controls.on_update(lambda event: self.dragged(obj.id) if getattr(event, "phase", None) == "end"
-                                else self.dragging(obj.id))
+    def _movable(self) -> bool:
+        gen = self.state.gen
+        return gen is not None and self.selected in {o.id for o in gen.plan.objects}
 
-    def dragging(self, object_id: str) -> None:
-        """While the gizmo moves: re-score the metrics live (at most every 0.3 s), without redrawing."""
-        now = time.perf_counter()
-        if now - self._last_live < LIVE_RESCORE_S or self.state.gen is None:
+    def _place_controls(self) -> None:
+        """The drag gizmo sits on the selected object's top and stays there after each drag."""
+        if not self._movable():
+            if self.controls is not None:
+                self.controls.remove()
+                self.controls = None
+            return
+        obj = next(o for o in self.state.gen.scene.objects if o.id == self.selected)
+        where = world(obj.x, obj.y + obj.size.y / 2 + 0.03, obj.z)
+        if self.controls is None:
+            self.controls = self.client.scene.add_transform_controls(
+                "/drag", scale=max(0.5, 0.6 * max(obj.size.x, obj.size.z)), active_axes=(True, False, True),
+                disable_rotations=True, depth_test=False, position=where)
+            self.controls.on_update(self._dragging)
+        else:
+            self.controls.position = where
+            self.controls.wxyz = (1.0, 0.0, 0.0, 0.0)
+
+    def _dragging(self, event) -> None:
+        if self.selected is None or self.state.gen is None:
+            return
+        x, _, neg_z = self.controls.position
+        if event.phase == "end":
+            before = self.state.gen.layout.placement(self.selected)
+            self.move_to(self.selected, float(x), float(-neg_z), before.rotation, how="drag")
+            return
+        now = time.perf_counter()  # while dragging: the object follows, the checks re-run (throttled)
+        obj = next(o for o in self.state.gen.scene.objects if o.id == self.selected)
+        self.view.move(obj.model_copy(update={"x": float(x), "z": float(-neg_z)}))
+        if now - self._last_live < LIVE_RESCORE_S:
             return
         self._last_live = now
-        x, _, neg_z = self.controls.position
-        gen = self.state.gen
-        before = gen.layout.placement(object_id)
-        moved = self.pipeline.move(gen, object_id, float(x), float(-neg_z), before.rotation, self.state.seed)
-        self.show_metrics(moved)
+        moved = self.pipeline.move(self.state.gen, self.selected, float(x), float(-neg_z),
+                                   self.state.gen.layout.placement(self.selected).rotation, self.state.seed)
+        self.refresh_checks(moved)
 
-    def dragged(self, object_id: str) -> None:
-        gen = self.state.gen
-        x, _, neg_z = self.controls.position
-        before = next(p for p in gen.layout.placements if p.id == object_id)
-        rotation = (round((before.rotation + rotation_of(self.controls.wxyz)) / 90) * 90) % 360
-        new = self.pipeline.move(gen, object_id, float(x), float(-neg_z), rotation, self.state.seed)
-        self.state.edits.append(Edit("move", object_id, [before.x, before.z, before.rotation],
-                                     [round(float(x), 3), round(float(-neg_z), 3), rotation]))
-        self.state.gen = new
+    def apply_pose(self) -> None:
+        if self._movable():
+            self.move_to(self.selected, float(self.pose_x.value), float(self.pose_z.value),
+                         float(self.pose_rot.value), how="typed pose")
+
+    def turn(self, degrees: int) -> None:
+        if self._movable():
+            p = self.state.gen.layout.placement(self.selected)
+            self.move_to(self.selected, p.x, p.z, round((p.rotation + degrees) / 90) * 90, how=f"turn {degrees:+d}°")
+
+    def move_to(self, object_id: str, x: float, z: float, rotation: float, how: str) -> None:
+        """A designer's move (drag, typed pose or turn): undoable, stored as an edit, checked at once."""
+        with self.lock:
+            gen = self.state.gen
+            before = gen.layout.placement(object_id)
+            new = self.pipeline.move(gen, object_id, x, z, rotation, self.state.seed)
+            self.history.record(f"move {object_id}", self.state.values)
+            edit = Edit("move", object_id, [before.x, before.z, before.rotation],
+                        [round(x, 3), round(z, 3), rotation % 360])
+            self.state.values = replace(self.state.values, gen=new, edits=self.state.edits + (edit,))
+        obj = next(o for o in new.scene.objects if o.id == object_id)
+        for o in [obj, *obj.children]:
+            self.view.move(o)
+        self._place_controls()
+        if self.selected == object_id:
+            self._show_picked(obj)
+        findings = self.refresh_checks()
+        self._set_unsaved(True)
+        self.say(f"Moved `{object_id}` to ({x:.2f}, {z:.2f}) facing {rotation % 360:.0f}° ({how}). "
+                 + (f"⚠ {len(findings)} check(s) fail." if findings else "All checks pass.")
+                 + f" {len(self.state.edits)} designer edit(s); **Undo** reverts.")
+
+    # ---- undo / redo ------------------------------------------------------------------------------
+
+    def undo(self) -> None:
+        self._restore(self.history.undo(self.state.values), "Undid")
+
+    def redo(self) -> None:
+        self._restore(self.history.redo(self.state.values), "Redid")
+
+    def _restore(self, snap, verb: str) -> None:
+        if snap is None:
+            self.say(f"Nothing to {verb.lower()[:-1]}o." if verb == "Undid" else "Nothing to redo.")
+            return
+        with self.lock:
+            self.state.values = snap.values
+            self.state.shown = len(self.state.steps)
         self.redraw()
-        self.show_metrics()
-        self.say(f"Moved `{object_id}` to ({x:.2f}, {-neg_z:.2f}); metrics re-scored. "
-                 f"{len(self.state.edits)} designer edit(s) in this session.")
+        self.refresh_panels()
+        self.refresh_checks()
+        if self.selected:
+            self.pick(self.selected)
+        self._set_unsaved(True)
+        self.say(f"{verb}: {snap.label}.")
 
     # ---- constraint editing -----------------------------------------------------------------------
 
@@ -389,10 +629,25 @@ class StudioSession:
         if cs.warnings:
             self.c_message.content = "**Error:** Edit not applied:\n\n" + "\n".join(f"- {w}" for w in cs.warnings)
             return
-        before = gen.plan.constraints
-        self.state.edits.append(Edit("constraints", "plan", before, text))
-        kept = kept_before_edit(gen, gen.plan.model_copy(update={"constraints": text}))
-        self._run(lambda obs: self.pipeline.replan(gen, text, self.state.seed, self.state.solver, obs), fresh=False)
+        had = sum(len(oc.relations) for oc in read_constraints(gen.plan.constraints, ids).objects.values())
+        if had and not any(oc.relations for oc in cs.objects.values()):
+            self._confirm("Remove all constraints?",
+                          f"This edit removes all {had} relations between objects and re-places the room.",
+                          "Remove them", lambda: self._replan(text))
+            return
+        self._replan(text)
+
+    def _replan(self, text: str) -> None:
+        gen = self.state.gen
+        with self._busy("Re-placing after the constraint edit") as free:
+            if not free:
+                return
+            kept = kept_before_edit(gen, gen.plan.model_copy(update={"constraints": text}))
+            edit = Edit("constraints", "plan", gen.plan.constraints, text)
+            if not self._run(lambda obs: self.pipeline.replan(gen, text, self.state.seed, self.state.solver, obs),
+                             fresh=False, record="constraint edit", keep_reference=True):
+                return
+            self.state.values = replace(self.state.values, edits=self.state.edits + (edit,))
         moved = [p.id for p in self.state.gen.layout.placements
                  if (q := gen.layout.placement(p.id)) is None or (q.x, q.z, q.rotation) != (p.x, p.z, p.rotation)]
         self.c_message.content = (f"Re-placed after the edit ({len(kept)} objects before the edited one kept); "
@@ -429,10 +684,13 @@ class StudioSession:
     def _graph_edit(self, objects: list[TaskObject], note: str) -> None:
         gen = self.state.gen
         graph = gen.task_graph.model_copy(update={"objects": objects})
-        self.state.edits.append(Edit("task-graph", note, [o.model_dump() for o in gen.task_graph.objects],
-                                     [o.model_dump() for o in objects]))
-        self.state.gen = Generation(graph, gen.room_plan, gen.plan, gen.layout, gen.scene)
+        edit = Edit("task-graph", note, [o.model_dump() for o in gen.task_graph.objects],
+                    [o.model_dump() for o in objects])
+        self.history.record(f"task graph {note}", self.state.values)
+        self.state.values = replace(self.state.values, gen=Generation(graph, gen.room_plan, gen.plan, gen.layout,
+                                                                       gen.scene), edits=self.state.edits + (edit,))
         self.refresh_panels()
+        self._set_unsaved(True)
         self.say(f"Task graph edited ({note}). Press **Regenerate from graph** to rebuild the room.")
 
     def set_role(self) -> None:
@@ -465,11 +723,14 @@ class StudioSession:
         gen = self.state.gen
         if gen is None:
             return
-        graph: TaskGraph = gen.task_graph
-        keep = {o.type for o in graph.objects}
-        graph = graph.model_copy(update={"relations": [r for r in graph.relations if r[0] in keep and r[2] in keep]})
-        self._run(lambda obs: self.pipeline.generate_from_graph(graph, self.state.seed, self.state.solver, obs),
-                  fresh=False)
+        with self._busy("Regenerating from the corrected graph") as free:
+            if not free:
+                return
+            graph: TaskGraph = gen.task_graph
+            keep = {o.type for o in graph.objects}
+            graph = graph.model_copy(update={"relations": [r for r in graph.relations if r[0] in keep and r[2] in keep]})
+            self._run(lambda obs: self.pipeline.generate_from_graph(graph, self.state.seed, self.state.solver, obs),
+                      fresh=False, record="regenerate from graph")
 
     # ---- storing and exporting --------------------------------------------------------------------
 
@@ -478,60 +739,119 @@ class StudioSession:
         if gen is None:
             self.say("**Error:** Nothing to save yet: generate a scene first.")
             return
+        findings = self.refresh_checks()
+        if findings:
+            listed = "\n".join(f"- ⚠ {f.text}" for f in findings)
+            self._confirm(f"Save a scene that fails {len(findings)} check(s)?",
+                          f"{listed}\n\nSaving anyway records that the checks were overridden.",
+                          "Save anyway", lambda: self._save(findings))
+            return
+        self._save([])
+
+    def _save(self, overridden: list[Finding]) -> None:
+        gen = self.state.gen
         name = self.save_name.value.strip() or gen.task_graph.instruction[:60]
+        edits = list(self.state.edits)
+        if overridden:
+            edits.append(Edit("override", "checks", [f.text for f in overridden], "saved anyway"))
         if self.state.scene_id is None:
-            sid, number = self.store.create_scene(name, gen.scene, self.state.seed, self.state.solver,
-                                                  self.state.edits)
+            sid, number = self.store.create_scene(name, gen.scene, self.state.seed, self.state.solver, edits)
             self.state.scene_id = sid
         else:
             sid = self.state.scene_id
-            number = self.store.add_version(sid, name, gen.scene, self.state.seed, self.state.solver, self.state.edits)
-        self.state.edits = []
-        self.list_scenes()
-        self.say(f"Saved as scene {sid}, version {number} (“{name}”).")
+            number = self.store.add_version(sid, name, gen.scene, self.state.seed, self.state.solver, edits)
+        self.state.values = replace(self.state.values, edits=())
+        self.list_scenes(select=(sid, number))
+        self._set_unsaved(False)
+        self.say(f"Saved as scene {sid}, version {number} (“{name}”)"
+                 + (f", overriding {len(overridden)} failed check(s)." if overridden else "."))
 
-    def list_scenes(self) -> None:
+    def list_scenes(self, select: tuple[int, int] | None = None) -> None:
         scenes = self.store.list_scenes()
         self.stored.options = tuple(f"{s['id']}: {s['name'][:50]}" for s in scenes) or ("-",)
-        self.list_versions()
+        if select is not None:
+            self.stored.value = next(o for o in self.stored.options if o.split(":")[0] == str(select[0]))
+        self.list_versions(select[1] if select else None)
 
-    def list_versions(self) -> None:
+    def list_versions(self, number: int | None = None) -> None:
         sid = self._selected_scene()
         versions = self.store.versions(sid) if sid is not None else []
         self.version.options = tuple(f"v{v['number']}: {v['name'][:40]}" for v in versions) or ("-",)
         if versions:
-            self.version.value = self.version.options[-1]
+            self.version.value = next((o for o in self.version.options if o.startswith(f"v{number}:")),
+                                      self.version.options[-1])
 
     def _selected_scene(self) -> int | None:
         value = self.stored.value
         return int(value.split(":")[0]) if value and value != "-" else None
 
+    def _selected_version(self) -> int | None:
+        value = self.version.value
+        return int(value.split(":")[0].removeprefix("v")) if value and value != "-" else None
+
     def open_version(self) -> None:
-        sid = self._selected_scene()
-        if sid is None or self.version.value == "-":
+        sid, number = self._selected_scene(), self._selected_version()
+        if sid is None or number is None:
             self.say("**Error:** No stored scene selected.")
             return
-        number = int(self.version.value.split(":")[0].removeprefix("v"))
         scene = self.store.scene(sid, number)
         try:
             gen = generation_of(scene)
         except ValueError as e:
             self.say(f"**Error:** {e}")
             return
-        self._run(lambda _obs: gen, fresh=True)
+        stored = self.store.versions(sid)[number - 1]
+        self.seed.value = stored["seed"]
+        if stored["solver"] in SOLVERS:
+            self.solver.value = stored["solver"]
+        with self._busy("Opening the stored scene") as free:
+            if not free:
+                return
+            self._run(lambda observer: self._replayable(gen, observer), fresh=True)
         self.state.scene_id = sid
+        self._set_unsaved(False)
         self.instruction.value = gen.task_graph.instruction
-        self.say(f"Opened scene {sid}, version {number}: {len(gen.layout.placements)} objects.")
+        self.say(f"Opened scene {sid}, version {number}: {len(gen.layout.placements)} objects. The Placement "
+                 f"tab replays the placer re-run with the stored seed ({stored['seed']}) and solver "
+                 f"(`{stored['solver']}`); each object lands at its stored pose.")
+
+    def _replayable(self, gen: Generation, observer) -> Generation:
+        """A stored scene has no recorded steps: re-run its placer with the stored seed for the order and
+        candidates of each step; the stored layout (with the designer's moves) stays what is shown."""
+        with contextlib.suppress(Exception):  # a solver that no longer exists: the scene opens without replay
+            self.pipeline.place(gen.plan, int(self.seed.value), self.solver.value, observer)
+        return gen
 
     def download(self, kind: str) -> None:
-        gen = self.state.gen
-        if gen is None:
+        """The selected stored version, named after it; the scene on screen when nothing is stored."""
+        sid, number = self._selected_scene(), self._selected_version()
+        if sid is not None and number is not None:
+            scene = self.store.scene(sid, number)
+            name = next((s["name"] for s in self.store.list_scenes() if s["id"] == sid), f"scene-{sid}")
+            stem = f"{_slug(name) or f'scene-{sid}'}-v{number}"
+        elif self.state.gen is not None:
+            scene, stem = self.state.gen.scene, f"{_slug(self.state.gen.task_graph.instruction)}-unsaved"
+        else:
+            self.say("**Error:** Nothing to download: generate or open a scene first.")
             return
         if kind == "house":
-            self.client.send_file_download("house.json", json.dumps(to_house(gen.scene), indent=2).encode(),
+            self.client.send_file_download(f"{stem}-house.json", json.dumps(to_house(scene), indent=2).encode(),
                                            save_immediately=True)
         else:
-            self.client.send_file_download("scene.glb", to_glb(gen.scene), save_immediately=True)
+            self.client.send_file_download(f"{stem}.glb", to_glb(scene), save_immediately=True)
+        self.say(f"Downloaded `{stem}` ({'house JSON' if kind == 'house' else 'GLB'}).")
+
+
+def _slug(text: str) -> str:
+    return re.sub(r"[^a-z0-9]+", "-", text.lower()).strip("-")[:48]
+
+
+def _parser_note(graph: TaskGraph) -> str:
+    """The parser's doubts in words (several tasks, not English, unknown objects), shown with the scene."""
+    if not graph.uncertain:
+        return ""
+    messages = graph.messages or ["the parser is unsure about this instruction"]
+    return "⚠ **Check the task graph:** " + " ".join(messages)
 
 
 class _Rejected(Exception):

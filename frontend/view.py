@@ -2,6 +2,10 @@
 
 AI2-THOR is left-handed (x right, y up, z forward); the browser's three.js is right-handed, so z is
 negated on the way in, as in the GLB export, and the room looks as it will in AI2-THOR.
+
+First render in a fresh tab is dominated by the browser compiling shaders (software WebGL here): the
+view uses no environment map and no shadows, one mesh per object and one material kind, which took the
+first Generate in a fresh tab from ~8 s to ~1 s (app/bench/studio.py measures it).
 """
 
 from __future__ import annotations
@@ -14,12 +18,15 @@ import viser
 from models.exports.glb import ROLE_COLOURS
 from models.placement import PlacementStep
 from models.scene.walls import wall_boxes
+from models.shapes import shape_mesh
 from models.values import Scene, SceneObject
 
 HIGHLIGHT = (255, 215, 0)
 FLOOR = (205, 195, 175)
 WALL = (236, 236, 230)
 ZONE = (80, 200, 120)
+LABEL_GAP = 0.16  # vertical step between labels that would overlap, metres
+LABEL_NEAR = 0.9  # labels closer than this on the floor are stacked, metres
 
 
 def world(x: float, y: float, z: float) -> tuple[float, float, float]:
@@ -42,54 +49,124 @@ def colour(role: str) -> tuple[int, int, int]:
     return tuple(ROLE_COLOURS.get(role, ROLE_COLOURS["context"])[:3])
 
 
+def tint(rgb, amount: float = 0.55) -> tuple[int, int, int]:
+    return tuple(int(c + (h - c) * amount) for c, h in zip(rgb, HIGHLIGHT))
+
+
+def label_heights(objects: list[SceneObject]) -> dict[str, float]:
+    """Height above the floor of each object's label: just above its top, raised in steps where labels
+    of objects close together on the floor would be drawn over each other."""
+    placed: list[tuple[float, float, float]] = []
+    out = {}
+    for o in sorted(objects, key=lambda o: (o.y + o.size.y / 2, o.x, o.z)):
+        y = o.y + o.size.y / 2 + 0.08
+        while any(math.hypot(o.x - x, o.z - z) < LABEL_NEAR and abs(y - h) < LABEL_GAP for x, z, h in placed):
+            y += LABEL_GAP
+        placed.append((o.x, o.z, y))
+        out[o.id] = y
+    return out
+
+
+def outline_segments(size) -> np.ndarray:
+    """The 12 edges (12, 2, 3) of a box of `size` centred on the origin, slightly enlarged."""
+    h = np.asarray(size, dtype=float) / 2 + 0.02
+    corners = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)]) * h
+    edges = [(a, b) for a in range(8) for b in range(a + 1, 8) if bin(a ^ b).count("1") == 1]
+    return np.array([[corners[a], corners[b]] for a, b in edges])
+
+
 class SceneView:
-    """The 3D content of one tab: room shell, objects (clickable), markers and the candidate heat-map."""
+    """The 3D content of one tab: room shell, objects (clickable shapes), labels, markers, the selection
+    outline and the candidate heat-map."""
 
     def __init__(self, scene_api: viser.SceneApi):
         self.api = scene_api
         self.api.set_up_direction("+y")
-        self.objects: dict[str, viser.BoxHandle] = {}
+        self.api.configure_environment_map(None)
+        self.api.configure_default_lights(True, cast_shadow=False)
+        self.nodes: list = []
+        self.objects: dict[str, viser.MeshHandle] = {}
         self.labels: dict[str, viser.LabelHandle] = {}
+        self.selected: str | None = None
+        self.outline = None
+        self.heat = None
         self.on_pick = None  # callback(object id)
 
     def clear(self) -> None:
-        self.api.reset()
+        for handle in self.nodes + [self.heat]:
+            _remove(handle)
+        self.nodes.clear()
         self.objects.clear()
         self.labels.clear()
+        self.outline = self.heat = None
+
+    def _keep(self, handle):
+        self.nodes.append(handle)
+        return handle
 
     def draw_room(self, scene: Scene) -> None:
         room = scene.room
-        self.api.add_box("/room/floor", color=FLOOR, dimensions=(room.width, 0.02, room.depth),
-                         position=world(room.width / 2, -0.01, room.depth / 2))
+        plain = {"cast_shadow": False, "receive_shadow": False}
+        self._keep(self.api.add_box("/room/floor", color=FLOOR, dimensions=(room.width, 0.02, room.depth),
+                                    position=world(room.width / 2, -0.01, room.depth / 2), **plain))
         for w in wall_boxes(room):
-            self.api.add_box(f"/room/{w.name}", color=WALL, dimensions=w.extents, position=world(*w.centre),
-                             opacity=0.35)
+            self._keep(self.api.add_box(f"/room/{w.name}", color=WALL, dimensions=w.extents,
+                                        position=world(*w.centre), opacity=0.35, **plain))
         r = scene.robot_start
-        self.api.add_cylinder("/markers/robot", radius=0.2, height=0.3, color=(40, 40, 40),
-                              position=world(r.x, 0.15, r.z), wxyz=(math.cos(-math.pi / 4), math.sin(-math.pi / 4), 0, 0))
-        self.api.add_label("/markers/robot/label", "robot start", position=(0, 0.0, 0.3))
+        self._keep(self.api.add_cylinder("/markers/robot", radius=0.2, height=0.3, color=(40, 40, 40),
+                                         position=world(r.x, 0.15, r.z), **plain,
+                                         wxyz=(math.cos(-math.pi / 4), math.sin(-math.pi / 4), 0, 0)))
+        self.api.add_label("/markers/robot/label", "robot start", position=(0, 0.0, 0.3), anchor="bottom-center")
         if scene.vr_anchor is not None:
             v = scene.vr_anchor
-            self.api.add_box("/markers/vr-zone", color=ZONE, dimensions=(0.8, 0.01, 0.8), opacity=0.5,
-                             position=world(v.x, 0.005, v.z), wxyz=yaw(v.rotation))
-            self.api.add_label("/markers/vr-zone/label", "VR user stands here", position=(0, 0.05, 0))
+            self._keep(self.api.add_box("/markers/vr-zone", color=ZONE, dimensions=(0.8, 0.01, 0.8), opacity=0.5,
+                                        position=world(v.x, 0.005, v.z), wxyz=yaw(v.rotation), **plain))
+            self.api.add_label("/markers/vr-zone/label", "VR user", position=(0, 0.05, 0), anchor="bottom-center")
 
     def draw_objects(self, scene: Scene, visible: set[str] | None = None) -> None:
-        """Every object (or those in `visible`) as a box of its true size, coloured by role, with its label."""
-        for obj in scene.objects:
-            shown = visible is None or obj.id in visible
-            self._box(obj, shown)
-            for child in obj.children:
-                self._box(child, shown)
+        """Every object (or those in `visible`) as its shape at its true size, coloured by role, labelled."""
+        heights = label_heights(scene.all_objects())
+        for obj in scene.all_objects():
+            self._shape(obj, visible is None or obj.id in visible, heights[obj.id])
+        if self.selected in self.objects:
+            self.select(self.selected, scene)
 
-    def _box(self, obj: SceneObject, shown: bool) -> None:
-        handle = self.api.add_box(f"/objects/{obj.id}", color=colour(obj.role),
-                                  dimensions=(obj.size.x, obj.size.y, obj.size.z), position=world(obj.x, obj.y, obj.z),
-                                  wxyz=yaw(obj.rotation), visible=shown)
-        self.labels[obj.id] = self.api.add_label(f"/objects/{obj.id}/label", f"{obj.id}",
-                                                 position=(0, obj.size.y / 2 + 0.08, 0), visible=shown)
+    def _shape(self, obj: SceneObject, shown: bool, label_y: float) -> None:
+        vertices, faces, _ = shape_mesh(obj.type, (obj.size.x, obj.size.y, obj.size.z))
+        vertices = vertices * np.array([1, 1, -1], np.float32)  # into the z-negated frame...
+        faces = faces[:, ::-1]  # ...which mirrors the winding
+        handle = self._keep(self.api.add_mesh_simple(
+            f"/objects/{obj.id}", vertices, faces, color=colour(obj.role), flat_shading=True, side="double",
+            cast_shadow=False, receive_shadow=False, position=world(obj.x, obj.y, obj.z), wxyz=yaw(obj.rotation),
+            visible=shown))
+        self.labels[obj.id] = self.api.add_label(f"/objects/{obj.id}/label", obj.id, anchor="bottom-center",
+                                                 position=(0, label_y - obj.y, 0), visible=shown)
         handle.on_click(lambda _event, oid=obj.id: self.on_pick and self.on_pick(oid))
         self.objects[obj.id] = handle
+
+    def move(self, obj: SceneObject) -> None:
+        """Show an object at its (new) pose without redrawing the scene."""
+        handle = self.objects.get(obj.id)
+        if handle is not None:
+            handle.position = world(obj.x, obj.y, obj.z)
+            handle.wxyz = yaw(obj.rotation)
+
+    def select(self, obj_id: str | None, scene: Scene) -> None:
+        """Highlight one object: tinted and outlined (the outline follows the object); None clears."""
+        if self.selected in self.objects:
+            old = next((o for o in scene.all_objects() if o.id == self.selected), None)
+            if old is not None:
+                self.objects[self.selected].color = colour(old.role)
+        _remove(self.outline)
+        self.outline = None
+        self.selected = obj_id
+        obj = next((o for o in scene.all_objects() if o.id == obj_id), None)
+        if obj is None or obj_id not in self.objects:
+            return
+        self.objects[obj_id].color = tint(colour(obj.role))
+        segments = outline_segments((obj.size.x, obj.size.y, obj.size.z))
+        self.outline = self.api.add_line_segments(f"/objects/{obj_id}/outline", segments, colors=HIGHLIGHT,
+                                                  thickness=3.0, thickness_units="screen")
 
     def drop_in(self, obj_id: str, scene: Scene, fraction: float) -> None:
         """Animate an object settling into place: `fraction` 0 is 0.8 m above, 1 is at rest.
@@ -112,7 +189,8 @@ class SceneView:
     def heat_map(self, step: PlacementStep | None) -> None:
         """Candidate scores of one placement step as coloured points on the floor (best over rotations)."""
         if step is None or len(step.candidates) == 0:
-            self.api.add_point_cloud("/heat", np.zeros((1, 3)), colors=(0, 0, 0), visible=False)
+            _remove(self.heat)
+            self.heat = None
             return
         xz = step.candidates[:, :2]
         keys, inverse = np.unique(np.round(xz, 3), axis=0, return_inverse=True)
@@ -125,4 +203,10 @@ class SceneView:
             v = best[finite]
             t = (v - v.min()) / max(float(v.max() - v.min()), 1e-9)
             colours[finite] = np.stack([255 * t, 60 + 120 * (1 - abs(t - 0.5) * 2), 255 * (1 - t)], axis=1).astype(np.uint8)
-        self.api.add_point_cloud("/heat", points.astype(np.float32), colors=colours, point_size=0.07)
+        self.heat = self.api.add_point_cloud("/heat", points.astype(np.float32), colors=colours, point_size=0.07)
+
+
+def _remove(handle) -> None:
+    """Remove a scene node unless it is gone already (children go with their parent)."""
+    if handle is not None and not handle._impl.removed:
+        handle.remove()

@@ -1,0 +1,98 @@
+"""Shared helpers for the studio's browser tests: the studio, chromium, viser's inputs, and real mouse
+events at an object's projected screen position (computed from the tab's camera, as three.js does)."""
+
+from __future__ import annotations
+
+import random
+import re
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from frontend import camera
+from frontend.view import world
+
+CHROMIUM = "/usr/bin/chromium"
+ARGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+        "--disable-background-networking", "--disable-component-update", "--disable-sync"]
+SCREENSHOTS = Path(__file__).resolve().parent.parent / "out" / "screenshots"
+WAIT = 30_000
+VIEWPORT = {"width": 1400, "height": 900}
+
+
+def start_studio(tmp_path_factory):
+    from frontend.server import Studio
+    from studio_db import Store
+
+    store = Store(f"sqlite:///{tmp_path_factory.mktemp('db') / 'studio.db'}")
+    return Studio("127.0.0.1", random.randint(20000, 40000), store)
+
+
+def launch(playwright_api):
+    assert Path(CHROMIUM).exists(), "Debian's chromium is missing: `make test` installs it (apt-get install chromium)"
+    return playwright_api.chromium.launch(executable_path=CHROMIUM, args=ARGS)
+
+
+def field(page, label: str):
+    """A viser input: the input or textarea in the row (the label's ancestor flex div) of its label."""
+    row = page.locator(f"xpath=//label[normalize-space(text())='{label}']"
+                       "/ancestor::div[contains(@class, 'mantine-Flex-root')][1]").first
+    row.wait_for(timeout=WAIT)
+    return row.locator("input, textarea").first
+
+
+def choose(page, label: str, option: str):
+    field(page, label).click()
+    page.get_by_role("option", name=option).first.click()
+
+
+def open_studio(browser, studio):
+    page = browser.new_context(viewport=VIEWPORT).new_page()
+    page.goto(f"http://127.0.0.1:{studio.port}")
+    page.get_by_role("button", name="Generate").wait_for(timeout=WAIT)
+    return page
+
+
+def session_of(studio, before: set[int]):
+    """The session of the tab that connected after `before` (the ids of the sessions there were)."""
+    new = [sid for sid in studio.sessions if sid not in before]
+    assert len(new) == 1
+    return studio.sessions[new[0]]
+
+
+def generate(page, instruction: str, room: str, run: int | None = None):
+    field(page, "Instruction").fill(instruction)
+    choose(page, "Room type", room)
+    page.get_by_role("button", name="Generate").click()
+    page.get_by_text(re.compile(rf"Scene ready \(#{run}\)" if run else "Scene ready")).wait_for(timeout=WAIT)
+
+
+def settle(page, frames: int = 3):
+    """Let the browser apply queued messages and draw a few frames."""
+    page.wait_for_timeout(300)
+    page.evaluate("n => new Promise(r => { const f = () => --n ? requestAnimationFrame(f) : r(); "
+                  "requestAnimationFrame(f); })", frames)
+
+
+def screen_xy(session, point) -> tuple[float, float]:
+    """Pixel position in the page of a point in the browser's frame, seen by the tab's camera."""
+    cam = session.client.camera
+    look = np.asarray(cam.look_at) - np.asarray(cam.position)
+    x, y = camera.project([point], cam.position, look, cam.fov, cam.image_width, cam.image_height)[0]
+    return float(x), float(y)
+
+
+def object_xy(session, object_id: str, height: float = 0.5) -> tuple[float, float]:
+    """Screen position of a point `height` of the way up the object's centre line."""
+    o = next(o for o in session.state.gen.scene.all_objects() if o.id == object_id)
+    return screen_xy(session, world(o.x, o.y - o.size.y / 2 + height * o.size.y, o.z))
+
+
+def wait_until(page, condition, what: str, timeout_ms: int = WAIT):
+    """Poll a server-side condition while the browser keeps running."""
+    for _ in range(timeout_ms // 100):
+        if condition():
+            return
+        page.wait_for_timeout(100)
+    pytest.fail(f"timed out waiting for {what}")

@@ -1,0 +1,171 @@
+"""The studio as a daily tool, in a real browser with real mouse events: the camera keeps the room in
+view, a drag into a collision is flagged and saving it asks first, undo restores the pose, downloads are
+the selected version and furniture is drawn and exported as shapes, not boxes."""
+
+import io
+import json
+import re
+from pathlib import Path
+
+import numpy as np
+import pytest
+from PIL import Image
+from studio_support import (WAIT, choose, field, generate, launch, object_xy, open_studio, screen_xy, session_of,
+                            settle, start_studio, wait_until)
+
+from frontend.camera import PANEL_PX, room_points
+from models.exports.procthor_house import to_house
+from models.shapes import family_of
+
+playwright_api = pytest.importorskip("playwright.sync_api")
+
+
+@pytest.fixture(scope="module")
+def studio(tmp_path_factory):
+    s = start_studio(tmp_path_factory)
+    yield s
+    s.stop()
+
+
+@pytest.fixture(scope="module")
+def browser():
+    with playwright_api.sync_playwright() as p:
+        b = launch(p)
+        yield b
+        b.close()
+
+
+def floor_like(rgb: np.ndarray) -> np.ndarray:
+    """Pixels of the lit floor colour (warm light grey): red >= green >= blue, a little warmer than grey."""
+    r, g, b = (rgb[..., i].astype(int) for i in range(3))
+    return (r >= g) & (g >= b) & (r - b >= 12) & (r - b <= 60) & (r > 90)
+
+
+def test_room_in_view_after_orbit_and_generate(browser, studio):
+    before = set(studio.sessions)
+    page = open_studio(browser, studio)
+    session = session_of(studio, before)
+    generate(page, "Put a chilled bread on the counter", "kitchen", run=1)
+    settle(page)
+    page.mouse.move(300, 700)  # orbit and zoom with the real mouse, far from the room's framing
+    page.mouse.down()
+    page.mouse.move(650, 420, steps=12)
+    page.mouse.up()
+    for _ in range(6):
+        page.mouse.wheel(0, -400)
+    settle(page)
+    generate(page, "Look at the book under the desk lamp", "bedroom", run=2)
+    settle(page, 6)
+    width, height = page.viewport_size["width"], page.viewport_size["height"]
+    free = width - PANEL_PX
+    room = session.state.gen.scene.room
+    corners = np.array([screen_xy(session, p) for p in room_points(room.width, room.depth, 0.0)])
+    assert (corners[:, 0] >= 0).all() and (corners[:, 0] <= free).all(), corners
+    assert (corners[:, 1] >= 0).all() and (corners[:, 1] <= height).all(), corners
+    shot = np.asarray(Image.open(io.BytesIO(page.screenshot())).convert("RGB"))
+    floor = floor_like(shot[:, :free])
+    assert floor.mean() > 0.08, f"only {100 * floor.mean():.1f} % of the free area shows floor"
+    ys, xs = np.nonzero(floor)
+    assert free * 0.25 < xs.mean() < free * 0.75 and height * 0.25 < ys.mean() < height * 0.75
+    assert floor_like(shot[:, free + 20:]).mean() < 0.02  # the room is not under the panel
+
+    page.get_by_role("button", name="Top view").click()
+    wait_until(page, lambda: session.state.view == "top", "the top view")
+    settle(page)
+    corners = np.array([screen_xy(session, p) for p in room_points(room.width, room.depth, 0.0)])
+    assert (corners[:, 0] <= free).all() and (corners[:, 1] >= 0).all()
+
+
+def test_drag_into_collision_warns_asks_before_saving_and_undo_restores(browser, studio):
+    before = set(studio.sessions)
+    page = open_studio(browser, studio)
+    session = session_of(studio, before)
+    generate(page, "Put a chilled bread on the counter", "kitchen")
+    settle(page)
+    fridge = session.state.gen.layout.placement("fridge-0")
+    counter = session.state.gen.layout.placement("countertop-0")
+    o = next(o for o in session.state.gen.scene.objects if o.id == "fridge-0")
+    page.mouse.click(*screen_xy(session, (o.x, o.y, -o.z)))
+    wait_until(page, lambda: session.controls is not None, "the gizmo on the picked fridge")
+    settle(page)
+    # the gizmo sits on the fridge's top; drag its z arrow (it points to the browser's +z, the room's -z)
+    top = np.asarray(session.controls.position)
+    assert abs(top[1] - (o.y + o.size.y / 2)) < 0.1
+    arrow = 0.5 * session.controls.scale
+    grab = screen_xy(session, top + (0, 0, arrow))
+    shift = counter.z - fridge.z
+    drop = screen_xy(session, top + (0, 0, arrow - shift))
+    page.mouse.move(*grab)
+    page.mouse.down()
+    page.mouse.move(*drop, steps=15)
+    page.mouse.up()
+    page.get_by_text(re.compile(r"fridge-0.* collides with")).first.wait_for(timeout=WAIT)
+    moved = session.state.gen.layout.placement("fridge-0")
+    assert abs(moved.z - counter.z) < 0.3 and moved.x == fridge.x
+    assert session.controls is not None and abs(session.controls.position[2] + moved.z) < 1e-6  # stays on it
+
+    page.get_by_role("tab", name="Scenes").click()
+    page.get_by_role("button", name="Accept & save").click()
+    page.get_by_text(re.compile(r"Save a scene that fails \d+ check")).wait_for(timeout=WAIT)
+    page.get_by_role("button", name="Save anyway").click()
+    saved = page.get_by_text(re.compile(r"Saved as scene \d+, version 1.*overriding"))
+    saved.wait_for(timeout=WAIT)
+    sid = int(re.search(r"scene (\d+)", saved.inner_text()).group(1))
+    override = [e for e in studio.store.edits(sid) if e["kind"] == "override"]
+    assert override and any("collides" in text for text in override[0]["before"])
+
+    page.get_by_role("button", name="Undo").click()
+    page.get_by_text(re.compile("Undid: move fridge-0")).wait_for(timeout=WAIT)
+    restored = session.state.gen.layout.placement("fridge-0")
+    assert (restored.x, restored.z, restored.rotation) == (fridge.x, fridge.z, fridge.rotation)
+    assert not session.state.findings
+    # the undo is unsaved work: leaving the page asks first
+    dialogs = []
+    page.on("dialog", lambda d: (dialogs.append(d.type), d.dismiss()))
+    page.evaluate("() => location.reload()")
+    page.wait_for_timeout(500)
+    assert dialogs == ["beforeunload"]
+
+
+def test_downloads_are_the_selected_version(browser, studio):
+    before = set(studio.sessions)
+    page = open_studio(browser, studio)
+    session = session_of(studio, before)
+    generate(page, "Put a chilled bread on the counter", "kitchen")
+    page.get_by_role("tab", name="Scenes").click()
+    field(page, "Name").fill("versions")
+    page.get_by_role("button", name="Accept & save").click()
+    page.get_by_text(re.compile(r"Saved as scene \d+, version 1")).wait_for(timeout=WAIT)
+    stool = session.state.gen.layout.placement("stool-3")
+    settle(page)
+    page.mouse.click(*object_xy(session, "stool-3", 0.9))  # a typed-in pose and a turn, in the picked panel
+    wait_until(page, lambda: session.selected == "stool-3", "stool-3 picked")
+    field(page, "x (m)").fill(f"{stool.x - 0.4:.2f}")
+    page.get_by_role("button", name="Apply pose").click()
+    page.get_by_text(re.compile(r"Moved `?stool-3`? .*typed pose")).wait_for(timeout=WAIT)
+    page.get_by_role("button", name="+90°").click()
+    page.get_by_text(re.compile(r"turn \+90")).wait_for(timeout=WAIT)
+    page.get_by_role("button", name="Accept & save").click()
+    if session.state.findings:
+        page.get_by_role("button", name="Save anyway").click()
+    saved = page.get_by_text(re.compile(r"Saved as scene \d+, version 2"))
+    saved.wait_for(timeout=WAIT)
+    sid = int(re.search(r"scene (\d+)", saved.inner_text()).group(1))
+    assert field(page, "Version").input_value().startswith("v2")  # the dropdown follows the save
+
+    choose(page, "Version", "v1: versions")
+    with page.expect_download() as download:
+        page.get_by_role("button", name="Download house JSON").click()
+    assert download.value.suggested_filename == "versions-v1-house.json"
+    house = json.loads(Path(download.value.path()).read_text())
+    assert house == json.loads(json.dumps(to_house(studio.store.scene(sid, 1))))
+    assert house != json.loads(json.dumps(to_house(studio.store.scene(sid, 2))))
+
+    with page.expect_download() as download:
+        page.get_by_role("button", name="Download GLB").click()
+    assert download.value.suggested_filename == "versions-v1.glb"
+    import trimesh
+
+    glb = trimesh.load(io.BytesIO(Path(download.value.path()).read_bytes()), file_type="glb")
+    furniture = [o.id for o in studio.store.scene(sid, 1).objects if family_of(o.type) != "block"]
+    assert furniture and all(len(glb.geometry[i].faces) > 12 for i in furniture)
