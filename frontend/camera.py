@@ -17,6 +17,7 @@ PANEL_PX = 420  # viser's floating control panel ("large" width) and its margin,
 DEFAULT_FOV = math.radians(50.0)  # vertical field of view of the framed views (viser's own default, 75, distorts)
 TOP_FOV = math.radians(6.0)
 EYE_HEIGHT = 1.6  # the VR user's eyes above the floor, metres
+VR_FOV = math.radians(80.0)  # roughly a Quest's vertical field of view
 MARGIN = 0.06  # share of the free area left around the framed room
 MAX_POLAR = math.radians(82.0)  # the orbit stops 8 degrees above the horizon: never below the floor
 DEFAULT_DIRECTION = np.array([0.0, -1.15, -1.0])  # looking down ~49 degrees, from the room's z = 0 side
@@ -103,4 +104,4 @@ def vr_view(x: float, z: float, rotation: float) -> tuple[np.ndarray, np.ndarray
     a = math.radians(rotation)
     eye = np.array([x, EYE_HEIGHT, -z])
     ahead = np.array([math.sin(a), 0.0, -math.cos(a)])
-    return eye, eye + 2.0 * ahead + np.array([0.0, -0.7, 0.0])
+    return eye, eye + 2.5 * ahead + np.array([0.0, -0.45, 0.0])

@@ -261,7 +261,8 @@ class StudioSession:
                 graph = self.pipeline.parse(self.instruction.value, room)
             except (InstructionError, ValueError) as e:
                 self._clear_graph()
-                self.say(f"**Error:** {e} The task graph was cleared; the scene below is the previous one.")
+                self.say(f"**Error:** {e}\n\nInstructions are read in English, one task at a time. The task graph "
+                         "was cleared; the 3D scene is still the previous one.")
                 return
             self.progress.content = "⏳ Planning the room and placing objects…"
             seed, solver = int(self.seed.value), self.solver.value
@@ -302,14 +303,22 @@ class StudioSession:
         if fresh:
             self.set_view("fit" if self.state.view != "top" else "top")
         self.refresh_panels()
-        self.refresh_checks()
         self._set_unsaved(True)
         placed = len(gen.layout.placements)
         self.say(f"Scene ready (#{self.state.runs}): {placed} placed, {len(gen.layout.unplaced)} unplaced "
                  f"({1000 * (time.perf_counter() - started):.0f} ms). Room: **{gen.task_graph.room_type}**."
                  + (f"\n\n{note}" if note else ""))
-        threading.Thread(target=self._energy_curve, args=(gen, steps), daemon=True).start()
+        self.checks_md.content = "**Checks:** running…"
+        threading.Thread(target=self._after_scene, args=(gen, steps), daemon=True).start()
         return True
+
+    def _after_scene(self, gen: Generation, steps: list[PlacementStep]) -> None:
+        """The slower read-outs (checks, metrics, per-step energies) follow the scene instead of delaying
+        it; saving runs the checks again, so nothing is saved unchecked."""
+        with self.lock:
+            if self.state.gen is gen:
+                self.refresh_checks()
+        self._energy_curve(gen, steps)
 
     def redraw(self) -> None:
         gen = self.state.gen
@@ -348,7 +357,7 @@ class StudioSession:
         if mode == "vr" and gen.scene.vr_anchor is not None:
             v = gen.scene.vr_anchor
             position, look_at = camera.vr_view(v.x, v.z, v.rotation)
-            fov = camera.DEFAULT_FOV
+            fov = camera.VR_FOV
         elif mode == "top":
             fov = camera.TOP_FOV
             position, look_at = camera.fit(camera.room_points(room.width, room.depth, 0.0), (0.0, -1.0, -1e-4),

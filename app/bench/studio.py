@@ -1,5 +1,10 @@
 """Studio speed in a real browser (Debian's chromium via Playwright): what a designer waits for.
 
+- First render in a fresh tab: a new tab, one Generate, until the status line says the scene is ready
+  and until every object node is in the browser's scene tree and two more frames are drawn; with what
+  was sent for it (messages by kind, bytes, labels). Fresh tabs alternate between the studio's view
+  setup and viser's default lighting (the "city" environment map and shadow-casting default lights, the
+  setup before issue 11), the baseline, in the same run.
 - Generate -> first complete 3D scene: from the click to the status line saying the scene is ready
   (sent after every object of the scene has been pushed to the browser), over N instructions.
 - Step animation: playing all steps at 10 objects / s against the 0.1 s per object it should take.
@@ -10,11 +15,14 @@ The in-process baseline is the pipeline alone (no browser), timed on the same in
 
 from __future__ import annotations
 
+import collections
 import re
 import statistics
 import tempfile
 import time
 from pathlib import Path
+
+import msgspec
 
 from app.bench.generate import pick_instructions, quantile
 from app.pipeline import Pipeline
@@ -35,6 +43,49 @@ def _field(page, label: str):
                         "/ancestor::div[contains(@class, 'mantine-Flex-root')][1]").first.locator("input, textarea").first
 
 
+FRESH_TABS = 3  # per variant
+FRAMES_JS = "() => new Promise(r => requestAnimationFrame(() => requestAnimationFrame(r)))"
+OBJECT_NODES_JS = ("n => Object.keys(window.__viserSceneTree.getState())"
+                   ".filter(k => /^\\/objects\\/[^/]+$/.test(k)).length >= n")
+
+
+def _count_messages(session) -> list:
+    """Record every message queued for this tab: (kind, bytes)."""
+    sent = []
+    conn = session.client._websock_connection
+    queue = conn.queue_message
+
+    def counting(message):
+        sent.append((type(message).__name__, len(msgspec.msgpack.encode(message.as_serializable_dict()))))
+        return queue(message)
+    conn.queue_message = counting
+    return sent
+
+
+def first_render(browser, studio, baseline: bool) -> dict:
+    """One fresh tab, one Generate: seconds to the status line and to the drawn scene, and what was sent."""
+    page = browser.new_page(viewport={"width": 1400, "height": 900})
+    before = set(studio.sessions)
+    page.goto(f"http://127.0.0.1:{studio.port}")
+    page.get_by_role("button", name="Generate").wait_for(timeout=30_000)
+    session = next(s for sid, s in studio.sessions.items() if sid not in before)
+    if baseline:  # viser's defaults, as the studio had them before issue 11
+        session.client.scene.configure_environment_map("city")
+        session.client.scene.configure_default_lights(True, cast_shadow=True)
+    page.wait_for_timeout(500)
+    sent = _count_messages(session)
+    t0 = time.perf_counter()
+    page.get_by_role("button", name="Generate").click()
+    page.get_by_text(re.compile("Scene ready")).wait_for(timeout=60_000)
+    ready = time.perf_counter() - t0
+    n_objects = len(session.state.gen.scene.all_objects())
+    page.wait_for_function(OBJECT_NODES_JS, arg=n_objects, timeout=60_000)
+    page.evaluate(FRAMES_JS)
+    drawn = time.perf_counter() - t0
+    page.close()
+    return {"ready": ready, "drawn": drawn, "sent": list(sent), "objects": n_objects}
+
+
 def main(args) -> int:
     from playwright.sync_api import sync_playwright
 
@@ -53,6 +104,10 @@ def main(args) -> int:
         studio = Studio("127.0.0.1", 28080, Store(f"sqlite:///{tmp}/bench.db"), pipeline)
         with sync_playwright() as p:
             browser = p.chromium.launch(executable_path="/usr/bin/chromium", args=ARGS)
+            fresh = {False: [], True: []}
+            for k in range(2 * FRESH_TABS):
+                baseline = bool(k % 2)
+                fresh[baseline].append(first_render(browser, studio, baseline))
             page = browser.new_page(viewport={"width": 1400, "height": 900})
             page.goto(f"http://127.0.0.1:{studio.port}")
             page.get_by_role("button", name="Generate").wait_for(timeout=30_000)
@@ -68,7 +123,7 @@ def main(args) -> int:
                 waits.append(time.perf_counter() - t0)
             one_scene_rss = rss_mb()
             page.get_by_role("tab", name="Placement").click()
-            session = next(iter(studio.sessions.values()))
+            session = studio.sessions[max(studio.sessions)]
             session.speed.value = 10.0  # the slider's handle, as a drag would set it
             n_steps = len(session.state.steps)
             t0 = time.perf_counter()
@@ -77,6 +132,18 @@ def main(args) -> int:
             played = time.perf_counter() - t0
             browser.close()
         studio.stop()
+    print(f"first render in a fresh tab (chromium, software WebGL), {FRESH_TABS} tabs per variant, one Generate each")
+    for baseline, label in ((True, "viser default lighting (baseline)"), (False, "studio view setup")):
+        runs = fresh[baseline]
+        print(f"  {label:34s} status line {statistics.median(r['ready'] for r in runs):5.2f} s   "
+              f"scene drawn {statistics.median(r['drawn'] for r in runs):5.2f} s (median)")
+    ratio = statistics.median(r["drawn"] for r in fresh[True]) / statistics.median(r["drawn"] for r in fresh[False])
+    print(f"  baseline / studio (scene drawn)    {ratio:.1f}x")
+    sent = fresh[False][0]["sent"]
+    kinds = collections.Counter(kind for kind, _ in sent)
+    print(f"  sent for one Generate: {len(sent)} messages, {sum(b for _, b in sent) / 1024:.0f} KiB, "
+          f"{kinds.get('LabelMessage', 0)} labels for {fresh[False][0]['objects']} objects; by kind: "
+          + ", ".join(f"{k.removesuffix('Message')} {n}" for k, n in kinds.most_common(8)))
     print(f"studio in chromium, {len(waits)} ALFRED valid_unseen instructions (rule parser, dfs)")
     print(f"  Generate -> scene ready    p50 {1000 * quantile(waits, .5):7.0f} ms   p90 {1000 * quantile(waits, .9):7.0f} ms")
     print(f"  pipeline alone (baseline)  p50 {1000 * quantile(bare, .5):7.0f} ms   -> browser round trip adds "

@@ -1,0 +1,96 @@
+"""The studio's logic without a browser: camera framing, label stacking, undo history, scene checks."""
+
+import pytest
+
+from frontend import camera
+from frontend.checks import run_checks
+from frontend.history import History
+from frontend.view import label_heights
+from models.values import TaskGraph
+
+W, H = 1400, 900
+
+
+@pytest.mark.parametrize("size", [(3.0, 3.0), (4.0, 6.5), (9.0, 3.0), (2.5, 8.0)])
+@pytest.mark.parametrize("direction", [camera.DEFAULT_DIRECTION, (1.0, -0.8, 0.3), (-0.2, -1.0, 1.0)])
+def test_fit_frames_the_room_in_the_free_area(size, direction):
+    points = camera.room_points(*size)
+    position, look_at = camera.fit(points, direction, camera.DEFAULT_FOV, W, H)
+    xy = camera.project(points, position, look_at - position, camera.DEFAULT_FOV, W, H)
+    free = W - camera.PANEL_PX
+    assert (xy[:, 0] >= 0).all() and (xy[:, 0] <= free).all() and (xy[:, 1] >= 0).all() and (xy[:, 1] <= H).all()
+    span = xy.max(axis=0) - xy.min(axis=0)
+    assert span[0] > 0.8 * free or span[1] > 0.8 * H, "the room is framed too small"
+    assert abs(xy[:, 0].min() - (free - xy[:, 0].max())) < 0.15 * free  # centred across the free area
+
+
+def test_top_view_looks_down_and_keeps_proportions():
+    points = camera.room_points(4.0, 6.0, 0.0)
+    position, look_at = camera.fit(points, (0.0, -1.0, -1e-4), camera.TOP_FOV, W, H)
+    xy = camera.project(points, position, look_at - position, camera.TOP_FOV, W, H)
+    span = xy.max(axis=0) - xy.min(axis=0)
+    assert position[1] > 20 and abs(span[1] / span[0] - 6.0 / 4.0) < 0.05  # near-orthographic
+
+
+def test_vr_view_looks_where_the_user_faces():
+    eye, look = camera.vr_view(2.0, 1.0, 90.0)  # facing +x (Unity yaw 90)
+    assert eye[1] == camera.EYE_HEIGHT and look[0] > eye[0] + 2 and abs(look[2] - eye[2]) < 1e-9
+
+
+def test_framing_direction_keeps_the_compass_heading_of_an_orbit():
+    d = camera.framing_direction((5.0, 0.3, 0.0), (0.0, 0.0, 0.0))  # orbited low, from +x
+    assert d[0] < 0 and abs(d[2]) < 1e-9 and d[1] < -0.5  # same heading, tilted back down
+
+
+class _Obj:
+    def __init__(self, oid, x, z, height):
+        self.id, self.x, self.z, self.y = oid, x, z, height / 2
+        self.size = type("S", (), {"y": height})()
+
+
+def test_labels_of_neighbours_are_stacked():
+    objs = [_Obj("bread-0", 1.0, 1.0, 0.9), _Obj("countertop-1", 1.1, 1.0, 0.9), _Obj("far-0", 4.0, 4.0, 0.9)]
+    h = label_heights(objs)
+    assert abs(h["bread-0"] - h["countertop-1"]) >= 0.15
+    assert h["far-0"] == pytest.approx(0.98)
+
+
+def test_history_undo_redo():
+    hist = History(limit=3)
+    assert hist.undo("now") is None
+    hist.record("a", 1)
+    hist.record("b", 2)
+    snap = hist.undo(3)
+    assert (snap.label, snap.values) == ("b", 2)
+    assert hist.redo(2).values == 3
+    hist.undo(3)
+    hist.record("c", 2)  # a new edit clears redo
+    assert hist.redo(9) is None
+    for i in range(5):
+        hist.record(str(i), i)
+    assert len(hist.done) == 3
+
+
+def test_checks_flag_collisions_doorway_start_and_metric_drops(pipeline):
+    gen = pipeline.generate("Put a chilled bread on the counter", "kitchen", seed=0)
+    findings, reference = run_checks(gen.plan, gen.layout, gen.scene)
+    assert findings == []
+    counter = gen.layout.placement("countertop-0")
+    moved = pipeline.move(gen, "fridge-0", counter.x, counter.z, 0)
+    findings, _ = run_checks(moved.plan, moved.layout, moved.scene, reference)
+    kinds = {f.kind for f in findings}
+    assert {"collision", "metric-drop"} <= kinds
+    assert any("fridge-0" in f.objects and "countertop-0" in f.objects for f in findings)
+    start = gen.scene.robot_start
+    blocked = pipeline.move(gen, "stool-3", start.x, start.z, 0)
+    kinds = {f.kind for f in run_checks(blocked.plan, blocked.layout, blocked.scene, reference)[0]}
+    assert {"start-blocked", "door-blocked"} <= kinds
+
+
+def test_parser_doubts_are_shown():
+    from frontend.session import _parser_note
+
+    graph = TaskGraph(instruction="x", room_type="kitchen", task_type="pick_and_place_simple", objects=[],
+                      relations=[], uncertain=True, messages=["Two tasks were found; only the first is used."])
+    assert "Two tasks" in _parser_note(graph)
+    assert _parser_note(graph.model_copy(update={"uncertain": False})) == ""
