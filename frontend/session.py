@@ -299,7 +299,7 @@ class StudioSession:
                 self.history.clear()
             self.state.shown = len(steps)
             self.state.runs += 1
-        self.redraw()
+        self.redraw(labels=False)
         if fresh:
             self.set_view("fit" if self.state.view != "top" else "top")
         self.refresh_panels()
@@ -318,16 +318,18 @@ class StudioSession:
         with self.lock:
             if self.state.gen is gen:
                 self.refresh_checks()
+            if self.state.gen is gen and not self.view.labels:
+                self.view.draw_labels(gen.scene, self._visible())
         self._energy_curve(gen, steps)
 
-    def redraw(self) -> None:
+    def redraw(self, labels: bool = True) -> None:
         gen = self.state.gen
         if gen is None:
             return
         with self.client.atomic():
             self.view.clear()
             self.view.draw_room(gen.scene)
-            self.view.draw_objects(gen.scene, self._visible())
+            self.view.draw_objects(gen.scene, self._visible(), labels)
             step = self.state.steps[self.state.shown - 1] if 0 < self.state.shown <= len(self.state.steps) else None
             self.view.heat_map(step if self.heat.value and self.state.shown < len(self.state.steps) else None)
         self._place_controls()
@@ -616,8 +618,9 @@ class StudioSession:
         if snap is None:
             self.say(f"Nothing to {verb.lower()[:-1]}o." if verb == "Undid" else "Nothing to redo.")
             return
-        with self.lock:
-            self.state.values = snap.values
+        with self.lock:  # the edit log keeps what was done and says it was undone (or redone)
+            log = Edit(verb.lower().removesuffix("id") + "o", snap.label, None, None)
+            self.state.values = replace(snap.values, edits=self.state.edits + (log,))
             self.state.shown = len(self.state.steps)
         self.redraw()
         self.refresh_panels()

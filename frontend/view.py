@@ -123,15 +123,26 @@ class SceneView:
                                         position=world(v.x, 0.005, v.z), wxyz=yaw(v.rotation), **plain))
             self.api.add_label("/markers/vr-zone/label", "VR user", position=(0, 0.05, 0), anchor="bottom-center")
 
-    def draw_objects(self, scene: Scene, visible: set[str] | None = None) -> None:
-        """Every object (or those in `visible`) as its shape at its true size, coloured by role, labelled."""
-        heights = label_heights(scene.all_objects())
+    def draw_objects(self, scene: Scene, visible: set[str] | None = None, labels: bool = True) -> None:
+        """Every object (or those in `visible`) as its shape at its true size, coloured by role; labelled
+        now or, with `labels=False`, when `draw_labels` is called (the first labels in a tab cost the
+        browser a few hundred milliseconds, so a fresh scene is drawn first and labelled just after)."""
         for obj in scene.all_objects():
-            self._shape(obj, visible is None or obj.id in visible, heights[obj.id])
+            self._shape(obj, visible is None or obj.id in visible)
+        if labels:
+            self.draw_labels(scene, visible)
         if self.selected in self.objects:
             self.select(self.selected, scene)
 
-    def _shape(self, obj: SceneObject, shown: bool, label_y: float) -> None:
+    def draw_labels(self, scene: Scene, visible: set[str] | None = None) -> None:
+        heights = label_heights(scene.all_objects())
+        for obj in scene.all_objects():
+            if obj.id in self.objects:
+                self.labels[obj.id] = self.api.add_label(
+                    f"/objects/{obj.id}/label", obj.id, anchor="bottom-center",
+                    position=(0, heights[obj.id] - obj.y, 0), visible=visible is None or obj.id in visible)
+
+    def _shape(self, obj: SceneObject, shown: bool) -> None:
         vertices, faces, _ = shape_mesh(obj.type, (obj.size.x, obj.size.y, obj.size.z))
         vertices = vertices * np.array([1, 1, -1], np.float32)  # into the z-negated frame...
         faces = faces[:, ::-1]  # ...which mirrors the winding
@@ -139,8 +150,6 @@ class SceneView:
             f"/objects/{obj.id}", vertices, faces, color=colour(obj.role), flat_shading=True, side="double",
             cast_shadow=False, receive_shadow=False, position=world(obj.x, obj.y, obj.z), wxyz=yaw(obj.rotation),
             visible=shown))
-        self.labels[obj.id] = self.api.add_label(f"/objects/{obj.id}/label", obj.id, anchor="bottom-center",
-                                                 position=(0, label_y - obj.y, 0), visible=shown)
         handle.on_click(lambda _event, oid=obj.id: self.on_pick and self.on_pick(oid))
         self.objects[obj.id] = handle
 
@@ -179,7 +188,8 @@ class SceneView:
             return
         if not handle.visible:  # first frame: show it, in the highlight colour
             handle.visible = True
-            self.labels[obj_id].visible = True
+            if obj_id in self.labels:
+                self.labels[obj_id].visible = True
             handle.color = HIGHLIGHT
         if fraction >= 1:
             handle.color = colour(obj.role)

@@ -4,6 +4,7 @@ the selected version and furniture is drawn and exported as shapes, not boxes.""
 
 import io
 import json
+import math
 import re
 from pathlib import Path
 
@@ -74,6 +75,12 @@ def test_room_in_view_after_orbit_and_generate(browser, studio):
     settle(page)
     corners = np.array([screen_xy(session, p) for p in room_points(room.width, room.depth, 0.0)])
     assert (corners[:, 0] <= free).all() and (corners[:, 1] >= 0).all()
+    assert page.evaluate("() => window.__viserMutable.cameraControl.maxPolarAngle") < math.pi / 2  # above floor
+
+    page.set_viewport_size({"width": 1000, "height": 760})  # a smaller window: the room is framed again
+    wait_until(page, lambda: session.state.canvas == (1000, 760), "a refit after the resize")
+    corners = np.array([screen_xy(session, p) for p in room_points(room.width, room.depth, 0.0)])
+    assert (corners[:, 0] >= 0).all() and (corners[:, 0] <= 1000 - PANEL_PX).all() and (corners[:, 1] <= 760).all()
 
 
 def test_drag_into_collision_warns_asks_before_saving_and_undo_restores(browser, studio):
