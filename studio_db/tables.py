@@ -41,7 +41,7 @@ class EditRow(SQLModel, table=True):
     id: int | None = Field(default=None, primary_key=True)
     scene_id: int = Field(foreign_key="scene.id", index=True)
     version_id: int | None = Field(default=None, foreign_key="scene_version.id")
-    kind: str  # move, constraint, role, add-object, remove-object
+    kind: str  # move, constraints, task-graph, override (saved despite failed checks), undo, redo
     target: str  # object id or "plan"
     before: str  # JSON
     after: str  # JSON

@@ -6,6 +6,7 @@ import io
 import json
 import math
 import re
+import time
 from pathlib import Path
 
 import numpy as np
@@ -176,3 +177,26 @@ def test_downloads_are_the_selected_version(browser, studio):
     glb = trimesh.load(io.BytesIO(Path(download.value.path()).read_bytes()), file_type="glb")
     furniture = [o.id for o in studio.store.scene(sid, 1).objects if family_of(o.type) != "block"]
     assert furniture and all(len(glb.geometry[i].faces) > 12 for i in furniture)
+
+
+def test_generate_is_disabled_while_it_runs(browser, studio, monkeypatch):
+    """Three quick clicks run one generation; the button is disabled and a progress line shows meanwhile.
+    The pipeline is slowed down on purpose (a 1.5 s sleep) so that the clicks land while it runs."""
+    before = set(studio.sessions)
+    page = open_studio(browser, studio)
+    session = session_of(studio, before)
+    real = studio.pipeline.generate_from_graph
+
+    def slow(*args, **kwargs):
+        time.sleep(1.5)
+        return real(*args, **kwargs)
+    monkeypatch.setattr(studio.pipeline, "generate_from_graph", slow)
+    button = page.get_by_role("button", name="Generate")
+    button.click()
+    page.get_by_text(re.compile("Planning the room and placing objects")).wait_for(timeout=WAIT)
+    assert button.is_disabled()
+    button.click(force=True)
+    button.click(force=True)
+    page.get_by_text(re.compile(r"Scene ready \(#1\)")).wait_for(timeout=WAIT)
+    page.wait_for_timeout(2500)
+    assert session.state.runs == 1 and button.is_enabled()
