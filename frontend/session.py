@@ -300,6 +300,8 @@ class StudioSession:
             self.state.shown = len(steps)
             self.state.runs += 1
         self.redraw(labels=False)
+        if self.selected is not None:
+            self.pick(self.selected)  # its panel shows the new scene's object, or closes if it is gone
         if fresh:
             self.set_view("fit" if self.state.view != "top" else "top")
         self.refresh_panels()
