@@ -84,6 +84,9 @@ class SceneView:
         self.api.set_up_direction("+y")
         self.api.configure_environment_map(None)
         self.api.configure_default_lights(True, cast_shadow=False)
+        # a soft sky/ground light, so faces turned away from the default lights are shaded, not black
+        self.api.add_light_hemisphere("/lights/fill", sky_color=(255, 255, 255), ground_color=(160, 150, 140),
+                                      intensity=1.2)
         self.nodes: list = []
         self.objects: dict[str, viser.MeshHandle] = {}
         self.labels: dict[str, viser.LabelHandle] = {}
