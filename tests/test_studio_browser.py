@@ -65,6 +65,12 @@ def test_designer_flow(browser, studio):
     moved = page.get_by_text(re.compile("Re-placed after the edit"))
     moved.wait_for(timeout=WAIT)
     assert "fridge-0" in moved.inner_text()
+    page.get_by_role("button", name="Undo").click()  # a constraint edit is undone and redone
+    page.get_by_text("Undid: constraint edit.").wait_for(timeout=WAIT)
+    assert raw.input_value() == original and session.state.gen.plan.constraints == original
+    page.get_by_role("button", name="Redo").click()
+    page.get_by_text("Redid: constraint edit.").wait_for(timeout=WAIT)
+    assert session.state.gen.plan.constraints == edited
 
     page.get_by_role("tab", name="Scenes").click()
     field(page, "Name").fill("bread in the browser")
@@ -75,7 +81,7 @@ def test_designer_flow(browser, studio):
     saved.wait_for(timeout=WAIT)
     scene_id = re.search(r"scene (\d+)", saved.inner_text()).group(1)
     kinds = [e["kind"] for e in studio.store.edits(int(scene_id))]
-    assert kinds[0] == "constraints" and set(kinds) <= {"constraints", "override"}
+    assert kinds[:3] == ["constraints", "undo", "redo"] and set(kinds[3:]) <= {"override"}
     assert field(page, "Stored scene").input_value().startswith(f"{scene_id}:")  # the dropdown followed
     with page.expect_download() as download:
         page.get_by_role("button", name="Download house JSON").click()
