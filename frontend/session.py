@@ -373,6 +373,7 @@ class StudioSession:
             position, look_at = camera.fit(camera.room_points(room.width, room.depth), direction, fov,
                                            width, height)
         with self.client.atomic():
+            self.view.set_top_view(mode == "top")
             cam.fov = fov
             cam.position = position  # position first: viser moves look-at along with a new position
             cam.look_at = look_at

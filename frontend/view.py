@@ -53,17 +53,18 @@ def tint(rgb, amount: float = 0.55) -> tuple[int, int, int]:
     return tuple(int(c + (h - c) * amount) for c, h in zip(rgb, HIGHLIGHT))
 
 
-def label_heights(objects: list[SceneObject]) -> dict[str, float]:
-    """Height above the floor of each object's label: just above its top, raised in steps where labels
-    of objects close together on the floor would be drawn over each other."""
+def label_layout(objects: list[SceneObject]) -> dict[str, tuple[float, int]]:
+    """(height above the floor, stacking level) of each object's label: just above its top, raised a
+    level at a time where labels of objects close together on the floor would be drawn over each other."""
     placed: list[tuple[float, float, float]] = []
     out = {}
     for o in sorted(objects, key=lambda o: (o.y + o.size.y / 2, o.x, o.z)):
-        y = o.y + o.size.y / 2 + 0.08
-        while any(math.hypot(o.x - x, o.z - z) < LABEL_NEAR and abs(y - h) < LABEL_GAP for x, z, h in placed):
-            y += LABEL_GAP
+        y, level = o.y + o.size.y / 2 + 0.08, 0
+        while any(math.hypot(o.x - x, o.z - z) < LABEL_NEAR and abs(y - h) < LABEL_GAP - 1e-9
+                  for x, z, h in placed):
+            y, level = y + LABEL_GAP, level + 1
         placed.append((o.x, o.z, y))
-        out[o.id] = y
+        out[o.id] = (y, level)
     return out
 
 
@@ -90,6 +91,8 @@ class SceneView:
         self.nodes: list = []
         self.objects: dict[str, viser.MeshHandle] = {}
         self.labels: dict[str, viser.LabelHandle] = {}
+        self.label_levels: dict[str, int] = {}
+        self.top_view = False
         self.selected: str | None = None
         self.outline = None
         self.heat = None
@@ -138,12 +141,24 @@ class SceneView:
             self.select(self.selected, scene)
 
     def draw_labels(self, scene: Scene, visible: set[str] | None = None) -> None:
-        heights = label_heights(scene.all_objects())
+        layout = label_layout(scene.all_objects())
         for obj in scene.all_objects():
             if obj.id in self.objects:
+                y, level = layout[obj.id]
+                self.label_levels[obj.id] = level
                 self.labels[obj.id] = self.api.add_label(
-                    f"/objects/{obj.id}/label", obj.id, anchor="bottom-center",
-                    position=(0, heights[obj.id] - obj.y, 0), visible=visible is None or obj.id in visible)
+                    f"/objects/{obj.id}/label", obj.id, anchor=self._anchor(level), position=(0, y - obj.y, 0),
+                    visible=visible is None or obj.id in visible)
+
+    def _anchor(self, level: int) -> str:
+        """Labels sit above their point; seen from straight above, heights no longer part stacked
+        labels, so every other level hangs below its point instead."""
+        return "top-center" if self.top_view and level % 2 else "bottom-center"
+
+    def set_top_view(self, top: bool) -> None:
+        self.top_view = top
+        for oid, label in self.labels.items():
+            label.anchor = self._anchor(self.label_levels.get(oid, 0))
 
     def _shape(self, obj: SceneObject, shown: bool) -> None:
         vertices, faces, _ = shape_mesh(obj.type, (obj.size.x, obj.size.y, obj.size.z))

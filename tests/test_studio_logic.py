@@ -5,7 +5,7 @@ import pytest
 from frontend import camera
 from frontend.checks import run_checks
 from frontend.history import History
-from frontend.view import label_heights
+from frontend.view import label_layout
 from models.values import TaskGraph
 
 W, H = 1400, 900
@@ -50,9 +50,9 @@ class _Obj:
 
 def test_labels_of_neighbours_are_stacked():
     objs = [_Obj("bread-0", 1.0, 1.0, 0.9), _Obj("countertop-1", 1.1, 1.0, 0.9), _Obj("far-0", 4.0, 4.0, 0.9)]
-    h = label_heights(objs)
-    assert abs(h["bread-0"] - h["countertop-1"]) >= 0.15
-    assert h["far-0"] == pytest.approx(0.98)
+    h = label_layout(objs)
+    assert abs(h["bread-0"][0] - h["countertop-1"][0]) >= 0.15 and {h["bread-0"][1], h["countertop-1"][1]} == {0, 1}
+    assert h["far-0"] == (pytest.approx(0.98), 0)
 
 
 def test_history_undo_redo():
