@@ -619,10 +619,10 @@ class StudioSession:
 
     def _restore(self, snap, verb: str) -> None:
         if snap is None:
-            self.say(f"Nothing to {verb.lower()[:-1]}o." if verb == "Undid" else "Nothing to redo.")
+            self.say("Nothing to undo." if verb == "Undid" else "Nothing to redo.")
             return
         with self.lock:  # the edit log keeps what was done and says it was undone (or redone)
-            log = Edit(verb.lower().removesuffix("id") + "o", snap.label, None, None)
+            log = Edit("undo" if verb == "Undid" else "redo", snap.label, None, None)
             self.state.values = replace(snap.values, edits=self.state.edits + (log,))
             self.state.shown = len(self.state.steps)
         self.redraw()
