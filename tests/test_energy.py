@@ -57,7 +57,8 @@ def test_relational_energy_is_zero_when_met_and_grows_with_violation():
                         "a | middle | near, b\nb | middle")
         return layout_energy(plan, pl).rel
     assert rel(1.6) == pytest.approx(0, abs=1e-9)
-    assert 0 < rel(2.5) < rel(3.0)
+    assert rel(2.5) == pytest.approx(0, abs=1e-9)  # gap 1.0: still near, so no energy
+    assert 0 < rel(2.8) < rel(3.2)
 
 
 def test_the_prior_file_is_what_the_bundled_ithor_data_gives():
@@ -106,3 +107,45 @@ def test_vectorised_energy_agrees_with_exact(pipeline, seed):
             assert fast[term][k] == pytest.approx(exact[term], abs=1e-6), term
         fast_agree += abs(fast["nav"][k] - exact["nav"]) < 1e-9
     assert fast_agree >= 0.5 * len(idx)
+
+
+def _ordered_case():
+    """A kitchen plan of three objects (one anchor) and a complete layout that meets every constraint."""
+    return make([("f", "Fridge", 0.8, 0.7, "anchor", (0.6, 3.65, 180)),
+                 ("c", "Chair", 0.5, 0.5, "context", (2.5, 2.0, 0)),
+                 ("t", "Box", 0.5, 0.5, "context", (3.2, 2.0, 0))],
+                "f | edge\nc | middle | near, t\nt | middle")
+
+
+def test_empty_is_worst_then_missing_one_then_complete():
+    plan, pl = _ordered_case()
+    complete = layout_energy(plan, pl)
+    assert complete.total == pytest.approx(0, abs=1e-9)
+    missing_context = layout_energy(plan, pl[:1] + pl[2:])
+    missing_anchor = layout_energy(plan, pl[1:])
+    empty = layout_energy(plan, [])
+    assert missing_context.missing == pytest.approx(1 / 3) and empty.missing == 1.0
+    assert missing_anchor.nav == 1.0 and empty.nav == 1.0  # an unplaced task object is unreachable
+    assert empty.total > missing_anchor.total > missing_context.total > complete.total
+
+
+def test_pending_objects_are_not_charged_until_the_episode_ends():
+    plan, pl = _ordered_case()
+    partial = layout_energy(plan, pl[:1], pending={"c", "t"})
+    assert partial.missing == 0 and partial.total == pytest.approx(0, abs=1e-9)
+    assert layout_energy(plan, pl[:1]).missing == pytest.approx(2 / 3)
+    # a pending task object is not yet a navigation target; once the episode ends it is
+    assert layout_energy(plan, pl[1:], pending={"f"}).nav == 0
+    assert layout_energy(plan, pl[1:]).nav == 1.0
+
+
+def test_vectorised_charges_missing_and_pending_like_exact():
+    plan, pl = _ordered_case()
+    problem = PlacementProblem.from_plan(plan)
+    obj = plan.object("c")
+    cand = np.array([[2.5, 2.0, 0.0]])
+    for pending in ((), ("t",)):
+        exact = layout_energy(plan, pl[:2], problem, pending=pending).as_dict()
+        vec = CandidateEnergy(problem, [_P(pl[0])], pending=pending).score(obj, cand, nav_mode="exact")
+        for term in exact:
+            assert vec[term][0] == pytest.approx(exact[term], abs=1e-6), (pending, term)

@@ -63,3 +63,14 @@ def test_edge(x, z, rotation, expected):
 def test_middle():
     assert placement("middle", Poses.one(2, 2, 0, 1, 1), 4, 4)[1][0]
     assert not placement("middle", Poses.one(0.8, 2, 0, 1, 1), 4, 4)[1][0]  # 0.3 m from the west wall
+
+
+@pytest.mark.parametrize("name,pose", [
+    ("near", (5, 6.4)), ("near", (5, 6.45)),  # gaps 0.65 and 0.7: met, so no energy
+    ("in front of", (5, 6.2)), ("in front of", (5, 6.9)),  # met at gaps 0.45 and 1.15
+    ("behind", (5, 3.8)), ("side of", (6.5, 5)), ("side of", (6.8, 5)),
+    ("right of", (6.5, 5)), ("left of", (3.5, 5)), ("center aligned", (5.05, 7)),
+])
+def test_a_met_constraint_has_zero_energy(name, pose):
+    ok, energy = rel(name, *pose)
+    assert ok and energy == 0

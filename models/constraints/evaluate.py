@@ -1,5 +1,5 @@
-"""Scores constraints on placed objects: for each, an energy (0 when fully met, growing with the
-violation) and a satisfied flag, exactly as the table of constraints.md defines them.
+"""Scores constraints on placed objects: for each, an energy (0 whenever the constraint is met, growing
+with the violation) and a satisfied flag, exactly as the table of constraints.md defines them.
 
 Everything is vectorised: A and B are arrays of poses that broadcast against each other (N candidates
 of A against one placed B, or one placed A against N candidates of B), so a placer scores all its
@@ -18,7 +18,7 @@ from models.geometry import boxes
 
 EDGE_TOL = 0.05
 MIDDLE_MIN = 0.4
-NEAR_MAX, NEAR_SOFT = 1.0, 0.5
+NEAR_MAX = 1.0
 FAR_MIN = 1.5
 FRONT_MAX_GAP, LATERAL_SLACK = 1.5, 0.3
 SIDE_MAX_GAP = 0.8
@@ -92,7 +92,7 @@ def relation(name: str, a: Poses, b: Poses, gap: np.ndarray | None = None) -> tu
 
     if name == "near":
         g = _gap(a, b)
-        return _relu(g - NEAR_SOFT), g <= NEAR_MAX
+        return _relu(g - NEAR_MAX), g <= NEAR_MAX
     if name == "far":
         g = _gap(a, b)
         return _relu(FAR_MIN - g), g >= FAR_MIN
@@ -102,7 +102,7 @@ def relation(name: str, a: Poses, b: Poses, gap: np.ndarray | None = None) -> tu
             ahead = -ahead
         g = _gap(a, b)
         lat_max = b.width / 2 + LATERAL_SLACK
-        energy = _relu(b.depth / 2 - ahead) + _relu(np.abs(lateral) - lat_max) + _relu(g - FRONT_MAX_GAP) + 0.2 * g
+        energy = _relu(b.depth / 2 - ahead) + _relu(np.abs(lateral) - lat_max) + _relu(g - FRONT_MAX_GAP)
         ok = (ahead > b.depth / 2) & (np.abs(lateral) <= lat_max) & (g <= FRONT_MAX_GAP)
         return energy, ok
     if name in ("side of", "left of", "right of"):
@@ -110,7 +110,7 @@ def relation(name: str, a: Poses, b: Poses, gap: np.ndarray | None = None) -> tu
         side = {"side of": np.abs(lateral), "left of": -lateral, "right of": lateral}[name]
         g = _gap(a, b)
         ahead_max = b.depth / 2 + LATERAL_SLACK
-        energy = _relu(b.width / 2 - side) + _relu(np.abs(ahead) - ahead_max) + _relu(g - SIDE_MAX_GAP) + 0.2 * g
+        energy = _relu(b.width / 2 - side) + _relu(np.abs(ahead) - ahead_max) + _relu(g - SIDE_MAX_GAP)
         ok = (side > b.width / 2) & (np.abs(ahead) <= ahead_max) & (g <= SIDE_MAX_GAP)
         return energy, ok
     if name == "face to":

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Collection
 from dataclasses import dataclass
 
 import numpy as np
@@ -26,6 +27,7 @@ class EnergyTerms:
     oob: float
     nav: float
     aff: float
+    missing: float = 0.0
 
     @property
     def total(self) -> float:
@@ -35,8 +37,11 @@ class EnergyTerms:
         return {**{k: getattr(self, k) for k in WEIGHTS}, "total": self.total}
 
 
-def layout_energy(plan: ConstraintPlan, placements: list[Placement], problem: PlacementProblem | None = None
-                  ) -> EnergyTerms:
+def layout_energy(plan: ConstraintPlan, placements: list[Placement], problem: PlacementProblem | None = None,
+                  pending: Collection[str] = ()) -> EnergyTerms:
+    """Energy of a (possibly partial) layout. Every plan object that is not placed is charged by E_missing
+    and, if it is a task object, counts as unreachable in E_nav; except the ids in `pending`, the objects
+    a placer has still to place (a per-step RL reward passes them; a finished layout passes none)."""
     problem = problem or PlacementProblem.from_plan(plan)
     room = plan.room
     fps = {p.id: Footprint(p.x, p.z, p.size.x, p.size.z, p.rotation) for p in placements}
@@ -86,16 +91,18 @@ def layout_energy(plan: ConstraintPlan, placements: list[Placement], problem: Pl
                                      and intersection_area(zone, polys[other]) > OVERLAP_TOL)
     aff = aff_sum / max(functional, 1)
 
-    # navigation: can the robot reach the front of every task object from the door?
-    targets = [o.id for o in plan.objects if o.is_task and o.id in fps]
+    # navigation: can the robot reach the front of every task object from the door? (unplaced: no)
+    due = [o.id for o in plan.objects if o.id in fps or o.id not in pending]
+    targets = [o.id for o in plan.objects if o.is_task and o.id in due]
     if targets:
         grid = nav.Grid(room.width, room.depth)
         reachable = nav.reachable_space(grid, nav.blocked_by_polygons(grid, list(polys.values())), room)
-        rho = sum(nav.can_reach(grid, reachable, fps[t]) for t in targets) / len(targets)
+        rho = sum(t in fps and nav.can_reach(grid, reachable, fps[t]) for t in targets) / len(targets)
         nav_e = (1 - rho) ** 2
     else:
         nav_e = 0.0
-    return EnergyTerms(rel=rel, collision=collision, oob=oob, nav=nav_e, aff=aff)
+    missing = sum(oid not in fps for oid in due) / len(plan.objects) if plan.objects else 0.0
+    return EnergyTerms(rel=rel, collision=collision, oob=oob, nav=nav_e, aff=aff, missing=missing)
 
 
 __all__ = ["EnergyTerms", "layout_energy"]

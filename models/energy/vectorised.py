@@ -12,6 +12,8 @@ candidate that cuts the free space in two elsewhere. `exact` labels the free spa
 
 from __future__ import annotations
 
+from collections.abc import Collection
+
 import numpy as np
 
 from models.constraints.evaluate import Poses, box_gap, placement, relation, wall_clearance
@@ -63,13 +65,18 @@ def _inflate(b: np.ndarray, r: float) -> np.ndarray:
 class CandidateEnergy:
     """Energy terms of `placed + candidate` for N candidates of one object."""
 
-    def __init__(self, problem: PlacementProblem, placed: list):
-        """`placed`: objects with id, x, z, rotation, width, depth (PlacedObject or Placement-like)."""
+    def __init__(self, problem: PlacementProblem, placed: list, pending: Collection[str] = ()):
+        """`placed`: objects with id, x, z, rotation, width, depth (PlacedObject or Placement-like).
+        `pending`: ids still to be placed after the candidate; they are not charged as missing (a per-step
+        reward passes the rest of the episode's objects). Every other unplaced plan object is charged by
+        E_missing and, if it is a task object, counts as unreachable in E_nav, as in `exact`."""
         self.problem = problem
         self.room = problem.plan.room
         self.types = {o.id: o.type for o in problem.plan.objects}
         self.task = {o.id for o in problem.plan.objects if o.is_task}
         self.placed = list(placed)
+        self.pending = set(pending)
+        self.n_objects = len(problem.plan.objects)
         self.prior = relation_prior()
         w, d = self.room.width, self.room.depth
         self.poses = {p.id: Poses.one(p.x, p.z, p.rotation, p.width, p.depth) for p in self.placed}
@@ -179,7 +186,8 @@ class CandidateEnergy:
         aff = aff_sum / max(functional, 1)
 
         nav_e = self._navigation(obj, cands, body) if nav_mode == "fast" else self._navigation_exact(obj, cands, body)
-        terms = {"rel": rel, "collision": collision, "oob": oob, "nav": nav_e, "aff": aff}
+        missing = np.full(n, len(self._missing(obj)) / max(self.n_objects, 1))
+        terms = {"rel": rel, "collision": collision, "oob": oob, "nav": nav_e, "aff": aff, "missing": missing}
         terms["total"] = sum(WEIGHTS[k] * terms[k] for k in WEIGHTS)
         return terms
 
@@ -188,11 +196,18 @@ class CandidateEnergy:
         total = self.reach_count.count(strip)
         return (total - self.reach_count.count(_intersect(np.broadcast_to(strip, cut.shape), cut))) > 0
 
+    def _missing(self, obj: PlanObject) -> list[str]:
+        """Plan objects neither placed, nor the candidate, nor pending."""
+        done = {p.id for p in self.placed} | {obj.id} | self.pending
+        return [o.id for o in self.problem.plan.objects if o.id not in done]
+
     def _targets(self, obj: PlanObject) -> tuple[list, bool, int]:
-        """Placed task objects, whether the candidate is one, and how many there are in all."""
+        """Placed task objects, whether the candidate is one, and how many there are in all (missing task
+        objects count: they are never reached)."""
         targets = [p for p in self.placed if p.id in self.task]
         is_target = obj.id in self.task
-        return targets, is_target, len(targets) + is_target
+        missing = sum(oid in self.task for oid in self._missing(obj))
+        return targets, is_target, len(targets) + is_target + missing
 
     def _navigation(self, obj: PlanObject, cands: np.ndarray, body: np.ndarray) -> np.ndarray:
         targets, is_target, n_targets = self._targets(obj)
