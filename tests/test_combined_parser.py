@@ -88,3 +88,22 @@ def test_parsers_by_name():
     assert make_parser("openai", base_url="http://127.0.0.1:9/v1").name == "openai"
     with pytest.raises(ValueError, match="unknown parser"):
         make_parser("gpt")
+
+
+def test_policies_differ_where_both_readings_name_a_type(tiny_adapter):
+    adapter, base = tiny_adapter
+    lm = LoraParser(adapter=adapter, base=str(base))
+    text = "Put the mug from the table in the sink"
+    ruled = RuleParser().parse(text, "kitchen")
+    fields = GraphFields("pick_and_place_simple", False, "Mug", "DiningTable")  # a named but wrong destination
+    rules_first = CombinedParser(lm=lm, policy="rules-first").merge(text, "kitchen", ruled, None, fields)
+    lm_first = CombinedParser(lm=lm, policy="lm-first").merge(text, "kitchen", ruled, None, fields)
+    assert rules_first.relations[-1] == ruled.relations[-1]
+    assert lm_first.relations[-1] == ("Mug", "placed_at", "DiningTable")
+    # a task type the model is sure of replaces the rules' one; an unsure one does not
+    heat = GraphFields("pick_heat_then_place_in_recep", False, "Mug", "SinkBasin")
+    sure = CombinedParser(lm=lm).merge(text, "kitchen", ruled, None, heat, task_confidence=0.95)
+    unsure = CombinedParser(lm=lm).merge(text, "kitchen", ruled, None, heat, task_confidence=0.5)
+    assert sure.task_type == "pick_heat_then_place_in_recep" and unsure.task_type == ruled.task_type
+    with pytest.raises(ValueError, match="unknown policy"):
+        CombinedParser(lm=lm, policy="vote")

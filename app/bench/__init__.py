@@ -14,6 +14,8 @@ def run_benchmark(what: str, args) -> int:
         from app.bench.studio import main
     elif what == "energy":
         from app.bench.energy import main
+    elif what == "language":
+        from app.bench.language import main
     else:
         raise ValueError(f"unknown benchmark {what!r}")
     return main(args)

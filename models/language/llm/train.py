@@ -144,6 +144,28 @@ def save_adapter(model, folder: Path, cfg: TrainConfig, extra: dict) -> None:
     (folder / META_FILE).write_text(json.dumps({"config": asdict(cfg), **extra}, indent=2) + "\n")
 
 
+def export_checkpoint(run: Path, dest: Path) -> Path:
+    """The run's last checkpoint as a shippable adapter in `dest` (float16, with the run's config and
+    last held-out figures): to ship a model while its training goes on."""
+    import shutil
+
+    import torch
+    from safetensors.torch import load_file, save_file
+    ckpt = Path(run) / "checkpoint-last"
+    state = torch.load(ckpt / "state.pt", weights_only=False)
+    dest.mkdir(parents=True, exist_ok=True)
+    shutil.copy(ckpt / "adapter_config.json", dest / "adapter_config.json")
+    save_file({k: v.to(torch.float16) for k, v in load_file(ckpt / "adapter_model.safetensors").items()},
+              dest / "adapter_model.safetensors")
+    last = next((r for r in reversed(state["log"]) if r["val_loss"] != ""), {})
+    config = json.loads((Path(run) / "config.json").read_text()) if (Path(run) / "config.json").exists() else {}
+    (dest / META_FILE).write_text(json.dumps({"config": config, "steps": state["step"],
+                                              "held_out_loss": last.get("val_loss"),
+                                              "held_out_exact": last.get("val_exact"),
+                                              "seconds": state["log"][-1]["seconds"]}, indent=2) + "\n")
+    return dest
+
+
 def train(cfg: TrainConfig, train_rows: list[Example], progress: bool = True) -> Path:
     """Fine-tune; returns the folder of the final adapter (`OUT/adapter`)."""
     import numpy as np
@@ -154,6 +176,7 @@ def train(cfg: TrainConfig, train_rows: list[Example], progress: bool = True) ->
 
     out = Path(cfg.out)
     out.mkdir(parents=True, exist_ok=True)
+    (out / "config.json").write_text(json.dumps(asdict(cfg), indent=2) + "\n")
     if cfg.threads:
         torch.set_num_threads(cfg.threads)
     random.seed(cfg.seed)

@@ -1,0 +1,135 @@
+"""`h3ds bench language`: the rule-based parser, the LoRA language model and the combined default parser
+on the language evaluation sets, with latency per instruction.
+
+Each instruction is read once by the language model; the `lora` graph is that reading, the `combined`
+graph merges it with the rules' reading (its latency is rules + model + merge, as `h3ds parse` runs
+it). The sets come from models/datasets/language_sets.py and the graph and role metrics from
+models/metrics/language.py when those modules exist; until then the sets are ALFRED `valid_seen` (ID
+evaluation), `valid_unseen` and `valid_unseen` without the instructions that also occur in `train`,
+and the metrics are those of `h3ds bench parser` (object F1, triplet recall = iRecall, task-type
+accuracy).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import time
+from pathlib import Path
+
+from app.bench.parser import score
+from models.language import InstructionError, RuleParser
+from models.language.alfred import Annotation, load_annotations
+
+RESULTS = Path(__file__).parent / "results"
+
+
+def _key(text: str) -> str:
+    return " ".join(text.lower().split())
+
+
+def evaluation_sets() -> dict[str, tuple[Annotation, ...]]:
+    train = {_key(a.instruction) for a in load_annotations("train")}
+    unseen = load_annotations("valid_unseen")
+    return {"ID (valid_seen)": load_annotations("valid_seen"), "valid_unseen": unseen,
+            "valid_unseen dedup": tuple(a for a in unseen if _key(a.instruction) not in train)}
+
+
+class Replay:
+    """A parser that returns graphs computed beforehand (so every metric sees the same readings)."""
+
+    def __init__(self, name: str, graphs: dict[str, object]):
+        self.name, self.graphs = name, graphs
+
+    def parse(self, instruction, room_type=None):
+        graph = self.graphs[instruction]
+        if isinstance(graph, InstructionError):
+            raise graph
+        return graph
+
+
+def _pct(values: list[float], q: float) -> float:
+    values = sorted(values)
+    return values[min(len(values) - 1, int(q * len(values)))] if values else float("nan")
+
+
+def read_all(rows, lm, combined: dict, rules) -> tuple[dict, dict]:
+    """Every instruction read by rules, LoRA and each combined policy; (graphs, seconds) by parser."""
+    names = ["rules", "lora", *combined]
+    graphs = {n: {} for n in names}
+    seconds = {n: [] for n in names}
+    for row in rows:
+        text, room = row.instruction, row.room_type
+        if text in graphs["rules"]:
+            continue
+        t0 = time.perf_counter()
+        try:
+            ruled, failure = rules.parse(text, room), None
+        except InstructionError as e:
+            ruled, failure = None, e
+        t1 = time.perf_counter()
+        decoded = lm.read(" ".join(text.split()), room)
+        t2 = time.perf_counter()
+        graphs["lora"][text] = lm.graph(decoded.fields, " ".join(text.split()), room)
+        t3 = time.perf_counter()
+        graphs["rules"][text] = ruled if ruled is not None else failure
+        seconds["rules"].append(t1 - t0)
+        seconds["lora"].append(t2 - t1 + t3 - t2)
+        for name, parser in combined.items():
+            t4 = time.perf_counter()
+            if ruled is not None and ruled.uncertain:
+                merged = ruled
+            else:
+                try:
+                    merged = parser.merge(" ".join(text.split()), room, ruled, failure, decoded.fields,
+                                          math.exp(decoded.logprob[0]))
+                except InstructionError as e:
+                    merged = e
+            graphs[name][text] = merged
+            seconds[name].append(t1 - t0 + t2 - t1 + time.perf_counter() - t4)
+    return graphs, seconds
+
+
+def main(args) -> int:
+    from models.language.combined import CombinedParser
+    from models.language.llm.parser import LoraParser
+
+    sets = evaluation_sets()
+    if args.sets:
+        wanted = [s.strip() for s in args.sets.split(",")]
+        sets = {k: v for k, v in sets.items() if any(k.startswith(w) for w in wanted)}
+    if args.per_set:
+        sets = {k: v[::max(1, len(v) // args.per_set)][:args.per_set] for k, v in sets.items()}
+    rules = RuleParser()
+    lm = LoraParser()
+    t0 = time.perf_counter()
+    lm.load()
+    load_s = time.perf_counter() - t0
+    combined = {"combined": CombinedParser(lm=lm, rules=rules),
+                "combined lm-first": CombinedParser(lm=lm, rules=rules, policy="lm-first")}
+    lm.read("Put a chilled bread on the counter", "kitchen")  # warm-up: the first call pays one-off costs
+
+    lines = [f"language parsers ({'every instruction' if not args.per_set else f'{args.per_set} evenly spaced instructions per set'}"
+             f"; room type given); model load {load_s:.1f} s (once per process)",
+             "| set | parser | n | object F1 | iRecall | task type | unparsed | p50 ms | p90 ms |",
+             "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
+    records = []
+    all_rows = {a.instruction: a for rows in sets.values() for a in rows}
+    graphs, seconds = read_all(list(all_rows.values()), lm, combined, rules)
+    by_text = {name: dict(zip([t for t in graphs[name]], seconds[name])) for name in graphs}
+    for set_name, rows in sets.items():
+        for name in graphs:
+            result = score(Replay(name, graphs[name]), rows)
+            times = [by_text[name][r.instruction] * 1000 for r in rows]
+            rec = {"set": set_name, "parser": name, "n": len(rows), **result,
+                   "p50_ms": _pct(times, 0.5), "p90_ms": _pct(times, 0.9)}
+            records.append(rec)
+            lines.append(f"| {set_name} | {name} | {len(rows)} | {100 * rec['object_f1']:.2f} | "
+                         f"{100 * rec['triplet_recall']:.2f} | {100 * rec['task_type_accuracy']:.2f} | "
+                         f"{rec['unparsed']} | {rec['p50_ms']:.1f} | {rec['p90_ms']:.1f} |")
+    print("\n".join(lines))
+    RESULTS.mkdir(exist_ok=True)
+    (RESULTS / "language.md").write_text("\n".join(lines) + "\n")
+    (RESULTS / "language.json").write_text(json.dumps({"model_load_s": load_s, "records": records}, indent=1) + "\n")
+    print(f"written: {RESULTS / 'language.md'}, {RESULTS / 'language.json'}")
+    return 0
