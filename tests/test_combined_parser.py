@@ -100,10 +100,15 @@ def test_policies_differ_where_both_readings_name_a_type(tiny_adapter):
     lm_first = CombinedParser(lm=lm, policy="lm-first").merge(text, "kitchen", ruled, None, fields)
     assert rules_first.relations[-1] == ruled.relations[-1]
     assert lm_first.relations[-1] == ("Mug", "placed_at", "DiningTable")
-    # a task type the model is sure of replaces the rules' one; an unsure one does not
+    # a task type the model is sure of replaces the rules' cue-less default; an unsure one does not
     heat = GraphFields("pick_heat_then_place_in_recep", False, "Mug", "SinkBasin")
     sure = CombinedParser(lm=lm).merge(text, "kitchen", ruled, None, heat, task_confidence=0.95)
     unsure = CombinedParser(lm=lm).merge(text, "kitchen", ruled, None, heat, task_confidence=0.5)
+    assert ruled.task_type == "pick_and_place_simple"
     assert sure.task_type == "pick_heat_then_place_in_recep" and unsure.task_type == ruled.task_type
+    # but never a cue word the rules read ("chilled" -> cool)
+    chilled = "Put a chilled mug in the sink"
+    cool = CombinedParser(lm=lm).merge(chilled, "kitchen", RuleParser().parse(chilled, "kitchen"), None, heat, 0.99)
+    assert cool.task_type == "pick_cool_then_place_in_recep"
     with pytest.raises(ValueError, match="unknown policy"):
         CombinedParser(lm=lm, policy="vote")

@@ -5,7 +5,8 @@
   its target is named in the instruction: the model always writes *some* catalogue type, so it must
   not be trusted to invent the objects of an instruction that names none.
 - `rules-first` (the default): the rules' reading, with the model's where the rules guess: the task
-  type when the model is sure of another one (p >= 0.9), the target or destination when the rules'
+  type when the rules found no cue word (their default, pick-and-place) and the model is sure of
+  another one (p >= 0.9), the target or destination when the rules'
   type is not named in the instruction and the model's is (or neither is: the model learnt ALFRED's
   usual receptacles). `lm-first`: the model's reading, with the rules' target or destination only
   where the model's type is unnamed and the rules' is. Which policy is the default was decided on the
@@ -100,8 +101,10 @@ class CombinedParser:
     @staticmethod
     def _rules_first(theirs: GraphFields, lm: GraphFields, task_confidence: float, named: set[str]) -> GraphFields:
         """The rules' reading, with the model's where the rules guess: a task type the model is sure of
-        (p >= TASK_CONFIDENCE), a target or destination the rules did not find named in the text."""
-        task = lm.task_type if lm.task_type != theirs.task_type and task_confidence >= TASK_CONFIDENCE \
+        (p >= TASK_CONFIDENCE) over the rules' cue-less default, a target or destination the rules did not find named in the text."""
+        # a cue word the rules found (chill, heat, examine...) is strong evidence; the model may overrule
+        # only their default reading, pick-and-place, which is what a misspelt or unknown cue gives
+        task = lm.task_type if theirs.task_type == "pick_and_place_simple" and task_confidence >= TASK_CONFIDENCE \
             else theirs.task_type
         target = theirs.target if theirs.target in named or lm.target not in named else lm.target
         looking = task == "look_at_obj_in_light"
