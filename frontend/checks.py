@@ -61,7 +61,7 @@ def run_checks(plan: ConstraintPlan, layout: Layout, scene: Scene,
     if reference is not None:
         for name, label in (("key_nav", "Key_NAV"), ("constraint_satisfaction", "constraints met")):
             now, before = getattr(metrics, name), getattr(reference, name)
-            if now < before - DROP_TOL:
+            if now is not None and before is not None and now < before - DROP_TOL:
                 out.append(Finding("metric-drop", f"{label} dropped from {100 * before:.0f} % to {100 * now:.0f} %"))
     return out, metrics
 

@@ -501,8 +501,8 @@ class StudioSession:
         e = layout_energy(gen.plan, gen.layout.placements).as_dict()
         self.metrics_md.content = (
             "| metric | value |\n| --- | --- |\n"
-            f"| CNT | {100 * m.cnt:.0f} % |\n| SR | {100 * m.sr:.0f} % |\n| NAV | {100 * m.nav:.1f} % |\n"
-            f"| Key_NAV | {100 * m.key_nav:.0f} % |\n| OOB | {100 * m.oob:.0f} % |\n| collisions | {m.collisions} |\n"
+            f"| CNT | {100 * m.cnt:.0f} % |\n| SR | {_pct(m.sr)} |\n| NAV | {100 * m.nav:.1f} % |\n"
+            f"| Key_NAV | {_pct(m.key_nav)} |\n| OOB | {100 * m.oob:.0f} % |\n| collisions | {m.collisions} |\n"
             f"| constraints met | {100 * m.constraint_satisfaction:.0f} % |\n"
             f"| energy (total) | {e['total']:.3f} |")
         return findings
@@ -871,3 +871,8 @@ def _parser_note(graph: TaskGraph) -> str:
 
 class _Rejected(Exception):
     pass
+
+
+def _pct(value: float | None) -> str:
+    """A metric in percent, or n/a when the plan has nothing for it to check (no task object)."""
+    return "n/a" if value is None else f"{100 * value:.0f} %"

@@ -20,10 +20,17 @@ def test_stored_dataset_is_the_deterministic_rebuild(name):
 def test_seen_set_size_split_and_object_counts():
     records = load_dataset("seen")
     assert len(records) >= 6000
-    assert Counter(r.split for r in records) == {"train": 5200, "validation": len(records) - 5200}
+    splits = Counter(r.split for r in records)
+    assert set(splits) == {"train", "validation"} and 5200 <= splits["train"] < 5200 + 9
+    # split by instruction: no validation instruction is also a training instruction
+    train = {r.instruction for r in records if r.split == "train"}
+    assert not train & {r.instruction for r in records if r.split == "validation"}
     assert len({r.plan.room.type for r in records}) == 9
     big = sum(len(r.plan.objects) > 10 for r in records) / len(records)
     assert 0.4 <= big <= 0.6
+    # every plan names the floor objects the robot must reach, the picked object's start receptacle too
+    assert all(any(o.is_task for o in r.plan.objects) for r in records)
+    assert sum(any(o.holds and "key" in o.holds for o in r.plan.objects) for r in records) > 0.5 * len(records)
 
 
 @pytest.mark.parametrize("name", ["unseen_a", "unseen_b"])

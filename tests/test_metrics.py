@@ -62,3 +62,46 @@ def test_constraint_satisfaction():
     assert bad.constraint_satisfaction == pytest.approx(2 / 4)
     missing = case([chair, table], unplaced=("table",), constraints="chair | middle | near, table\ntable | middle")
     assert missing.constraint_satisfaction == pytest.approx(1 / 3)
+
+
+def test_an_empty_layout_earns_nothing():
+    m = case([BED, LAMP, BOX], unplaced=("bed", "lamp", "box"))
+    assert (m.cnt, m.sr, m.key_nav, m.nav, m.oob, m.constraint_satisfaction) == (0.0, 0.0, 0.0, 0.0, 1.0, 0.0)
+    assert not m.complete
+
+
+def test_dropping_an_object_never_raises_nav_or_lowers_oob():
+    full = case([BED, LAMP, BOX])
+    dropped = case([BED, LAMP, BOX], unplaced=("box",))
+    assert dropped.nav == 0.0 < full.nav
+    assert dropped.oob == pytest.approx(1 / 3) and full.oob == 0
+
+
+def test_a_plan_without_task_objects_is_not_applicable():
+    m = case([("box", "Box", 0.5, 0.5, "context", (3.5, 0.5, 0))])
+    assert m.sr is None and m.key_nav is None and m.n_task == 0
+
+
+def test_the_start_receptacle_of_the_picked_object_is_a_task_object():
+    """A dining table holding the key object (the bread to pick up) must be placed and reachable."""
+    table = {"id": "table", "type": "DiningTable", "size": {"x": 1, "y": 1, "z": 1}, "role": "context", "holds": ["key"]}
+    plan = ConstraintPlan.model_validate({"id": "m", "room": ROOM, "objects": [table]})
+    walled = ConstraintPlan.model_validate({"id": "m", "room": ROOM, "objects": [
+        table, {"id": "row", "type": "Dresser", "size": {"x": 4.0, "y": 1, "z": 0.6}, "role": "context"}]})
+    at = Placement(id="table", type="DiningTable", x=2, z=3.2, rotation=180, size=Size(x=1, y=1, z=1))
+    row = Placement(id="row", type="Dresser", x=2, z=2.0, rotation=0, size=Size(x=4.0, y=1, z=0.6))
+    t = Timing(total_s=0.1, per_object_s=0.1)
+    placed = scene_metrics(plan, Layout(plan_id="m", solver="t", seed=0, placements=[at], timing=t))
+    assert placed.n_task == 1 and placed.sr == 1.0 and placed.key_nav == 1.0
+    missing = scene_metrics(plan, Layout(plan_id="m", solver="t", seed=0, placements=[], timing=t))
+    assert missing.sr == 0.0 and missing.key_nav == 0.0
+    cut_off = scene_metrics(walled, Layout(plan_id="m", solver="t", seed=0, placements=[at, row], timing=t))
+    assert cut_off.sr == 1.0 and cut_off.key_nav == 0.0
+
+
+def test_nav_counts_only_the_free_space_reachable_from_the_door():
+    """A row of dressers just north of the door: the largest free region is the far side (about 3/4 of
+    the free space), but the robot can use only the strip by the door."""
+    row = ("row", "Dresser", 4.0, 0.4, "context", (2.0, 1.0, 0))
+    m = case([row])
+    assert m.nav < 0.3

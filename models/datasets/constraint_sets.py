@@ -1,7 +1,8 @@
 """Constraint datasets built from ALFRED instructions and the room planner (no LLM can run here at scale).
 
-- `seen`     ALFRED train instructions x the nine room types (6,102 plans, 5,200 train / 902
-             validation); rooms of the usual sizes, 3-14 context objects, clean Holodeck text.
+- `seen`     ALFRED train instructions x the nine room types (6,102 plans, about 5,200 train, the
+             rest validation, split by instruction: no validation instruction appears in training);
+             rooms of the usual sizes, 3-14 context objects, clean Holodeck text.
 - `unseen_a` ALFRED valid_unseen instructions, one room type each (518 plans); smaller rooms, more
              objects, denser constraints, and LLM habits: renamed and misspelled constraints, ids
              pointing at missing objects.
@@ -85,11 +86,17 @@ def build_dataset(name: str) -> list[PlanRecord]:
             text = restyle(plan.constraints, [o.id for o in plan.objects], rng, recipe.habits)
             plan = plan.model_copy(update={"constraints": text})
             records.append(PlanRecord("", instruction, plan))
-    order = list(range(len(records)))
-    random.Random(f"{SEED}-{name}-split").shuffle(order)
-    train = set(order[:recipe.n_train])
+    # split by instruction, not by plan: no validation instruction is seen in training in any room type
+    instructions = sorted({r.instruction for r in records})
+    random.Random(f"{SEED}-{name}-split").shuffle(instructions)
+    train, count = set(), 0
+    for instruction in instructions:
+        if count >= recipe.n_train:
+            break
+        train.add(instruction)
+        count += sum(r.instruction == instruction for r in records)
     default = "test" if recipe.n_train == 0 else "validation"
-    return [PlanRecord("train" if i in train else default, r.instruction, r.plan) for i, r in enumerate(records)]
+    return [PlanRecord("train" if r.instruction in train else default, r.instruction, r.plan) for r in records]
 
 
 def encode(records: list[PlanRecord]) -> bytes:

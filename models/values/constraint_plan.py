@@ -18,10 +18,13 @@ class PlanObject(Value):
     type: str = Field(min_length=1)
     size: Size
     role: PlanRole = "context"
+    # roles of the task's surface objects that start on or in this object (the counter the bread must be
+    # picked up from holds "key"): the robot has to reach it, so it is a task object too (issue 7)
+    holds: list[PlanRole] | None = None
 
     @property
     def is_task(self) -> bool:
-        return self.role in TASK_ROLES
+        return self.role in TASK_ROLES or any(r in TASK_ROLES for r in self.holds or ())
 
 
 class ConstraintPlan(Value):

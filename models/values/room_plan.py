@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from pydantic import Field
+from pydantic import Field, model_validator
 
 from models.values.common import Provenance, Size, Value
 from models.values.constraint_plan import PlanObject
@@ -25,3 +25,15 @@ class RoomPlan(Value):
     objects: list[PlanObject]
     surface_objects: list[SurfaceObject] = Field(default_factory=list)
     provenance: Provenance | None = None
+
+    @model_validator(mode="after")
+    def _mark_task_receptacles(self) -> RoomPlan:
+        """A floor object holding a task surface object records the role in `holds` (see PlanObject)."""
+        held: dict[str, list[str]] = {}
+        for s in self.surface_objects:
+            if s.role != "context":
+                held.setdefault(s.parent, []).append(s.role)
+        marked = [o.model_copy(update={"holds": sorted(set(o.holds or ()) | set(held[o.id]))}) if o.id in held else o
+                  for o in self.objects]
+        object.__setattr__(self, "objects", marked)  # frozen value: set once, while validating
+        return self
