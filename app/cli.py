@@ -246,6 +246,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--out", default=None, help="placement: folder for results and plots")
     p.add_argument("--sets", default=None, help="language: comma-separated evaluation sets (default: all)")
     p.add_argument("--per-set", type=int, default=0, help="language: instructions per set (0: all)")
+    p.add_argument("--decoding", type=int, default=0, metavar="N", help="language: also compare constrained "
+                   "decoding with free decoding + MiniLM snapping on N ID instructions")
     p.set_defaults(run=cmd_bench)
 
     p = sub.add_parser("train", help="train a model (seeded, resumable, loss curves): language")

