@@ -94,3 +94,30 @@ def test_an_edit_replans_from_the_edited_point(pipeline, solver):
     for oid, (x, z, r) in kept.items():
         p = again.layout.placement(oid)
         assert p is not None and abs(p.x - x) < 0.01 and abs(p.z - z) < 0.01 and p.rotation == r
+
+
+def test_one_per_object_budget_rule_for_every_solver():
+    from models.placement.problem import PER_OBJECT_BUDGET_S, time_budget
+    p = plan(KITCHEN, KITCHEN_TEXT)
+    assert time_budget(p) == pytest.approx(PER_OBJECT_BUDGET_S * len(KITCHEN))
+    assert time_budget(p, 3.0) == 3.0
+    for name in ("dfs", "milp", "milp_whole", "z3"):
+        assert get_solver(name).time_budget_s is None  # nobody has a budget of its own
+
+
+@pytest.mark.parametrize("solver", ["milp", "milp_whole", "z3"])
+def test_model_solvers_stay_within_the_budget(solver):
+    layout = get_solver(solver).solve(plan(KITCHEN, KITCHEN_TEXT), seed=0, time_budget_s=0.6)
+    assert layout.timing.total_s <= 0.6 + 0.25  # a little slack for reading the answer back
+
+
+def test_milp_reads_back_only_a_feasible_solution_and_says_why():
+    """HiGHS's primal status 1 means infeasible: an infeasible model must give no poses, with a reason."""
+    from models.placement.formulation import Expr, build
+    from models.placement.milp import MILPSolver
+    from models.placement.problem import PlacementProblem
+    model, ov = build(PlacementProblem.from_plan(plan(KITCHEN, KITCHEN_TEXT)))
+    model.require([Expr(const=1.0)])  # 1 <= 0: no solution exists
+    poses, reasons = MILPSolver().run(model, ov, seed=0, seconds=1.0)
+    assert poses == {} and set(reasons) == set(ov)
+    assert all("no feasible layout" in r for r in reasons.values())

@@ -51,12 +51,18 @@ def _milp() -> Solver:
     return MILPSolver()
 
 
+def _milp_whole() -> Solver:
+    """The monolithic MILP (one model for all objects), kept to measure against the object-by-object one."""
+    from models.placement.milp import MILPSolver
+    return MILPSolver(mode="whole")
+
+
 def _z3() -> Solver:
     from models.placement.smt import Z3Solver
     return Z3Solver()
 
 
-SOLVERS: dict[str, Callable[[], Solver]] = {"dfs": _dfs, "milp": _milp, "z3": _z3}
+SOLVERS: dict[str, Callable[[], Solver]] = {"dfs": _dfs, "milp": _milp, "milp_whole": _milp_whole, "z3": _z3}
 DEFAULT_SOLVER = "dfs"
 
 

@@ -15,7 +15,7 @@ import numpy as np
 
 from models.placement.base import Fixed, PlacementStep, StepObserver
 from models.placement.candidates import CandidateScorer, PlacedObject
-from models.placement.problem import PlacementProblem
+from models.placement.problem import PlacementProblem, time_budget
 from models.placement.result import make_layout
 from models.values import ConstraintPlan, Layout
 
@@ -27,14 +27,14 @@ NO_ROOM = "no collision-free position left in the room"
 class DFSSolver:
     name = "dfs"
 
-    def __init__(self, branch: int = BRANCH, time_budget_s: float = 2.0):
+    def __init__(self, branch: int = BRANCH, time_budget_s: float | None = None):
         self.branch = branch
-        self.time_budget_s = time_budget_s
+        self.time_budget_s = time_budget_s  # None: the shared per-object rule (problem.time_budget)
 
     def solve(self, plan: ConstraintPlan, seed: int = 0, time_budget_s: float | None = None,
               observer: StepObserver | None = None, fixed: Fixed | None = None) -> Layout:
         start = time.perf_counter()
-        deadline = start + (time_budget_s if time_budget_s is not None else self.time_budget_s)
+        deadline = start + time_budget(plan, time_budget_s if time_budget_s is not None else self.time_budget_s)
         problem = PlacementProblem.from_plan(plan, fixed)
         scorer = CandidateScorer(problem)
         rng = np.random.default_rng(seed)

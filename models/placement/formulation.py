@@ -20,7 +20,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from models.placement.base import PlacementStep
-from models.placement.problem import DOOR_CLEARANCE, PlacementProblem
+from models.placement.problem import DOOR_CLEARANCE, PlacementProblem, time_budget
 from models.placement.result import make_layout
 from models.values import ConstraintPlan, Layout, PlanObject
 
@@ -298,15 +298,15 @@ class ModelSolver:
     name = "model"
     no_solution = "no solution within the time budget"
 
-    def __init__(self, time_budget_s: float):
-        self.time_budget_s = time_budget_s
+    def __init__(self, time_budget_s: float | None = None):
+        self.time_budget_s = time_budget_s  # None: the shared per-object rule (problem.time_budget)
 
     def solve(self, plan: ConstraintPlan, seed: int = 0, time_budget_s: float | None = None,
               observer=None, fixed: dict[str, tuple[float, float, float]] | None = None) -> Layout:
         start = time.perf_counter()
         problem = PlacementProblem.from_plan(plan, fixed)
         model, ov = build(problem, seed)
-        budget = time_budget_s if time_budget_s is not None else self.time_budget_s
+        budget = time_budget(plan, time_budget_s if time_budget_s is not None else self.time_budget_s)
         remaining = max(0.05, budget - (time.perf_counter() - start))
         poses, reasons = self.run(model, ov, seed, remaining)
         if problem.fixed and not poses:  # the kept poses cannot be completed: place everything afresh

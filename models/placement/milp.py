@@ -2,15 +2,29 @@
 
 Every condition of the shared model becomes rows with a big-M computed from the variables' bounds;
 every disjunction gets one binary per alternative. HiGHS runs with the seed and a time limit and the
-best incumbent is read back; objects whose `placed` binary is 0 are reported unplaced.
+best feasible incumbent (primal solution status 2; 1 means infeasible) is read back; objects whose
+`placed` binary is 0 are reported unplaced.
+
+Two ways to run it (issue 7: measured in the README's placement section):
+- `incremental` (the default): object by object in the problem's order, the way Holodeck grows a
+  layout, each a small MILP with the objects placed so far pinned, each with an equal share of the
+  budget. One object that does not fit is reported and the rest go on.
+- `whole`: one monolithic model for all objects; on large rooms it often finds no incumbent at all.
 """
 
 from __future__ import annotations
 
+import time
+
 import highspy
 import numpy as np
 
-from models.placement.formulation import Expr, Model, ModelSolver, ObjVars
+from models.placement.formulation import Expr, Model, ModelSolver, ObjVars, build
+from models.placement.problem import PlacementProblem, time_budget
+from models.placement.result import make_layout
+from models.values import ConstraintPlan, Layout
+
+FEASIBLE = 2  # HiGHS primal_solution_status: 0 none, 1 infeasible, 2 feasible
 
 INF = highspy.kHighsInf
 
@@ -63,8 +77,44 @@ class MILPSolver(ModelSolver):
     name = "milp"
     no_solution = "HiGHS found no feasible layout within the time budget"
 
-    def __init__(self, time_budget_s: float = 3.0):
+    def __init__(self, time_budget_s: float | None = None, mode: str = "incremental"):
         super().__init__(time_budget_s)
+        if mode not in ("incremental", "whole"):
+            raise ValueError(f"unknown MILP mode {mode!r}; use 'incremental' or 'whole'")
+        self.mode = mode
+
+    def solve(self, plan: ConstraintPlan, seed: int = 0, time_budget_s: float | None = None,
+              observer=None, fixed: dict[str, tuple[float, float, float]] | None = None) -> Layout:
+        if self.mode == "whole":
+            return super().solve(plan, seed, time_budget_s, observer, fixed)
+        start = time.perf_counter()
+        budget = time_budget(plan, time_budget_s if time_budget_s is not None else self.time_budget_s)
+        full = PlacementProblem.from_plan(plan, fixed)
+        poses = dict(full.fixed)
+        pins = dict(full.fixed)  # each object pinned where it was first put, so it cannot drift step by step
+        reasons: dict[str, str] = {}
+        todo = [o for o in full.order if o.id not in poses]
+        for i, obj in enumerate(todo):
+            left = budget - (time.perf_counter() - start)
+            if left <= 0:
+                reasons.update({o.id: "time budget ran out before it was placed" for o in todo[i:]})
+                break
+            placed_ids = set(poses) | {obj.id}
+            sub = plan.model_copy(update={"objects": [o for o in plan.objects if o.id in placed_ids]})
+            problem = PlacementProblem.from_plan(sub, pins)
+            model, ov = build(problem, seed)
+            got, why = self.run(model, ov, seed, max(0.05, left / (len(todo) - i)))
+            if obj.id in got:
+                poses.update(got)  # pinned objects may move by the pin tolerance: keep one consistent solution
+                pins[obj.id] = got[obj.id]
+            else:
+                reasons[obj.id] = why.get(obj.id, self.no_solution)
+            if observer is not None:
+                x, z, r = poses.get(obj.id, (None, None, None))
+                from models.placement.base import PlacementStep
+                observer(PlacementStep(obj.id, x, z, r, np.empty((0, 3)), np.empty(0), {}))
+        return make_layout(full, poses, reasons, self.name, seed, time.perf_counter() - start,
+                           default_reason=self.no_solution)
 
     def run(self, model: Model, ov: dict[str, ObjVars], seed: int, seconds: float):
         names = list(model.vars)
@@ -87,8 +137,12 @@ class MILPSolver(ModelSolver):
                       np.array(rows.starts, dtype=np.int32), np.array(rows.cols, dtype=np.int32),
                       np.array(rows.vals))
         h.run()
-        values = list(h.getSolution().col_value) if h.getInfo().primal_solution_status >= 1 else []
+        feasible = h.getInfo().primal_solution_status == FEASIBLE
+        values = list(h.getSolution().col_value) if feasible else []
         poses, reasons = {}, {}
+        if not feasible:
+            status = h.modelStatusToString(h.getModelStatus())
+            reasons = {oid: f"HiGHS found no feasible layout in {seconds:.2f} s ({status})" for oid in ov}
         if values:
             for oid, v in ov.items():
                 if values[index[v.placed]] > 0.5:

@@ -7,16 +7,21 @@ disjunctions itself instead of through big-M rows. The seed sets Z3's random see
 
 from __future__ import annotations
 
+import time
+
 import z3
 
 from models.placement.formulation import Expr, Model, ModelSolver, ObjVars
+
+
+READ_MARGIN_S = 0.05
 
 
 class Z3Solver(ModelSolver):
     name = "z3"
     no_solution = "Z3 found no model within the time budget"
 
-    def __init__(self, time_budget_s: float = 5.0):
+    def __init__(self, time_budget_s: float | None = None):
         super().__init__(time_budget_s)
 
     def run(self, model: Model, ov: dict[str, ObjVars], seed: int, seconds: float):
@@ -28,8 +33,8 @@ class Z3Solver(ModelSolver):
         def on(names: list[str]):
             return z3.And([v[n] == 1 for n in names]) if names else z3.BoolVal(True)
 
+        deadline = time.perf_counter() + seconds
         opt = z3.Optimize()
-        opt.set("timeout", max(50, int(1000 * seconds)))
         z3.set_param("smt.random_seed", int(seed) % 2**31, "sat.random_seed", int(seed) % 2**31)
         for n, var in model.vars.items():
             opt.add(v[n] >= var.lo, v[n] <= var.hi)
@@ -41,7 +46,10 @@ class Z3Solver(ModelSolver):
         for n, coef in model.objective.terms.items():
             if model.vars[n].binary and coef < 0:
                 opt.add_soft(v[n] == 1, weight=str(round(-coef, 4)))
-        opt.check()
+        # stating the model takes time too: Z3 gets what is left, less a margin for reading the model back
+        left = deadline - time.perf_counter()
+        opt.set("timeout", max(20, int(1000 * (left - READ_MARGIN_S))))
+        result = opt.check()
         poses, reasons = {}, {}
         try:
             m = opt.model()
@@ -59,4 +67,6 @@ class Z3Solver(ModelSolver):
                     poses[oid] = (val(f"x[{oid}]"), val(f"z[{oid}]"), 90.0 * k)
                 else:
                     reasons[oid] = "Z3's best model leaves it out: no position fits with the others"
+        else:
+            reasons = {oid: f"Z3 found no model in {seconds:.2f} s ({result})" for oid in ov}
         return poses, reasons
