@@ -6,6 +6,12 @@ For each seed and solver, every plan is solved and scored (models.metrics); a se
 mean over plans, and the table shows the mean and standard deviation of those over seeds. Raw
 per-plan results go to JSON and CSV, with PNG plots of time per scene against object count and of
 the metric distributions.
+
+Fairness (issue 7): every solver gets the same budget rule (models.placement.problem.time_budget,
+0.2 s per plan object, unless --budget is given); SR and Key_NAV are averaged over the plans that have
+task objects (the table says how many are n/a); a second table repeats the metrics over the (plan,
+seed) pairs that every solver placed completely, so that leaving objects out never looks better. Any
+solver registered in models.placement.base runs by name.
 """
 
 from __future__ import annotations
@@ -18,19 +24,31 @@ import time
 from pathlib import Path
 
 from models.datasets import load_dataset
+from models.energy.exact import layout_energy
 from models.metrics import scene_metrics
 from models.placement import PlacementProblem, get_solver
 
 COLUMNS = [("cnt", "CNT", 100), ("sr", "SR", 100), ("nav", "NAV", 100), ("key_nav", "Key_NAV", 100),
            ("oob", "OOB", 100), ("pto", "PTO (s)", 1), ("collisions", "collisions", 1),
-           ("constraint_satisfaction", "constraints", 100)]
+           ("constraint_satisfaction", "constraints", 100), ("realism", "realism", 100), ("energy", "energy", 1)]
 
 
 def pick_plans(dataset: str, n: int):
+    """`n` plans evenly spaced over the set (the `seen` validation split)."""
     split = "validation" if dataset == "seen" else None
     records = load_dataset(dataset, split)
     step = max(len(records) // n, 1)
     return [r.plan for r in records[::step][:n]]
+
+
+def score(plan, layout) -> dict:
+    """Every metric of one layout, its energy (the RL objective, here a judge) and why objects are missing."""
+    from models.metrics.realism import realism
+    problem = PlacementProblem.from_plan(plan)
+    m = scene_metrics(plan, layout, problem)
+    return {**m.as_dict(), "realism": realism(plan, layout),
+            "energy": layout_energy(plan, layout.placements, problem).total,
+            "unplaced": {u.id: u.reason for u in layout.unplaced}}
 
 
 def run(dataset: str, solvers: list[str], n: int, seeds: int, budget: float | None) -> list[dict]:
@@ -43,8 +61,8 @@ def run(dataset: str, solvers: list[str], n: int, seeds: int, budget: float | No
         for seed in range(seeds):
             for plan in plans:
                 layout = solver.solve(plan, seed=seed, time_budget_s=budget)
-                m = scene_metrics(plan, layout, PlacementProblem.from_plan(plan))
-                rows.append({"dataset": dataset, "solver": solver_name, "seed": seed, "plan": plan.id, **m.as_dict()})
+                rows.append({"dataset": dataset, "solver": solver_name, "seed": seed, "plan": plan.id,
+                             **score(plan, layout)})
                 done += 1
                 eta = (time.perf_counter() - start) / done * (total - done)
                 print(f"\r  {dataset}: {solver_name} seed {seed + 1}/{seeds} plan {done}/{total} "
@@ -53,20 +71,52 @@ def run(dataset: str, solvers: list[str], n: int, seeds: int, budget: float | No
     return rows
 
 
+def complete_everywhere(rows: list[dict], solvers: list[str]) -> set[tuple[str, int]]:
+    """(plan, seed) pairs that every solver placed completely."""
+    done: dict[tuple[str, int], set[str]] = {}
+    for r in rows:
+        if r["complete"]:
+            done.setdefault((r["plan"], r["seed"]), set()).add(r["solver"])
+    return {k for k, v in done.items() if v >= set(solvers)}
+
+
 def table(rows: list[dict], solvers: list[str]) -> str:
-    head = "| solver | " + " | ".join(label for _, label, _ in COLUMNS) + " |"
-    lines = [head, "|" + " --- |" * (len(COLUMNS) + 1)]
+    """Mean +- std over seeds of the per-seed means; n/a values (None) are left out and counted."""
+    head = "| solver | " + " | ".join(label for _, label, _ in COLUMNS) + " | n/a (SR / realism) |"
+    lines = [head, "|" + " --- |" * (len(COLUMNS) + 2)]
     for solver in solvers:
         mine = [r for r in rows if r["solver"] == solver]
         seeds = sorted({r["seed"] for r in mine})
         cells = []
         for key, _, scale in COLUMNS:
-            per_seed = [statistics.mean(r[key] for r in mine if r["seed"] == s) * scale for s in seeds]
+            per_seed = []
+            for s in seeds:
+                values = [r[key] for r in mine if r["seed"] == s and r[key] is not None]
+                if values:
+                    per_seed.append(statistics.mean(values) * scale)
+            if not per_seed:
+                cells.append("n/a")
+                continue
             sd = statistics.stdev(per_seed) if len(per_seed) > 1 else 0.0
-            cells.append(f"{statistics.mean(per_seed):.2f} +- {sd:.2f}" if scale != 1 or key != "pto"
-                         else f"{statistics.mean(per_seed):.4f} +- {sd:.4f}")
-        lines.append(f"| {solver} | " + " | ".join(cells) + " |")
+            digits = 4 if key == "pto" else 2
+            cells.append(f"{statistics.mean(per_seed):.{digits}f} +- {sd:.{digits}f}")
+        na = f"{sum(r['sr'] is None for r in mine)} / {sum(r['realism'] is None for r in mine)} of {len(mine)}"
+        lines.append(f"| {solver} | " + " | ".join(cells) + f" | {na} |")
     return "\n".join(lines)
+
+
+def report(rows: list[dict], solvers: list[str], dataset: str, n_plans: int, seeds: int) -> str:
+    both = complete_everywhere(rows, solvers)
+    subset = [r for r in rows if (r["plan"], r["seed"]) in both]
+    budget_over = max((r["time_s"] / (0.2 * r["n_objects"]) for r in rows), default=0.0)
+    empty = {s: sum(not r["cnt"] for r in rows if r["solver"] == s) for s in solvers}
+    out = [f"placement on `{dataset}` ({n_plans} plans x {seeds} seeds; metrics x100 except PTO (s per "
+           f"object), collisions (per scene) and energy):", "", "all runs:", "", table(rows, solvers), "",
+           f"runs every solver placed completely ({len(both)} of {n_plans * seeds} plan-seed pairs):", "",
+           table(subset, solvers) if subset else "(none)", "",
+           "runs that placed nothing: " + ", ".join(f"{s} {empty[s]}" for s in solvers)
+           + f"; slowest run / per-object budget rule: {budget_over:.2f}"]
+    return "\n".join(out)
 
 
 def plots(rows: list[dict], solvers: list[str], out: Path, dataset: str) -> list[Path]:
@@ -79,7 +129,7 @@ def plots(rows: list[dict], solvers: list[str], out: Path, dataset: str) -> list
     for ax, (label, test) in zip(axes, (("<= 10 objects", lambda k: k <= 10), ("> 10 objects", lambda k: k > 10))):
         means = [statistics.mean([r["time_s"] for r in rows if r["solver"] == s and test(r["n_objects"])] or [0])
                  for s in solvers]
-        ax.bar(solvers, means, color=["#888", "#4a7", "#47a", "#c44"][:len(solvers)])
+        ax.bar(solvers, means, color=[["#888", "#4a7", "#47a", "#c44", "#a7c", "#ca4"][i % 6] for i in range(len(solvers))])
         ax.set_title(f"{dataset}: {label}")
         ax.set_ylabel("mean time per scene (s)")
     fig.tight_layout()
@@ -90,7 +140,8 @@ def plots(rows: list[dict], solvers: list[str], out: Path, dataset: str) -> list
     keys = [("cnt", "CNT"), ("key_nav", "Key_NAV"), ("constraint_satisfaction", "constraints"), ("nav", "NAV")]
     fig, axes = plt.subplots(1, len(keys), figsize=(12, 3.2))
     for ax, (key, label) in zip(axes, keys):
-        ax.boxplot([[r[key] for r in rows if r["solver"] == s] for s in solvers], tick_labels=solvers)
+        ax.boxplot([[r[key] for r in rows if r["solver"] == s and r[key] is not None] or [0] for s in solvers],
+                   tick_labels=solvers)
         ax.set_title(label)
     fig.tight_layout()
     paths.append(out / "metric_distributions.png")
@@ -112,8 +163,8 @@ def main(args) -> int:
         writer.writeheader()
         writer.writerows(rows)
     pngs = plots(rows, solvers, out, args.dataset)
-    print(f"placement on `{args.dataset}` ({args.n} plans, {args.seeds} seeds; metrics x100 except PTO, "
-          f"collisions per scene):\n")
-    print(table(rows, solvers))
+    text = report(rows, solvers, args.dataset, len({r["plan"] for r in rows}), args.seeds)
+    (out / "table.md").write_text(text + "\n")
+    print(text)
     print(f"\nraw results: {out / 'results.json'}, {out / 'results.csv'}; plots: {', '.join(str(p) for p in pngs)}")
     return 0
