@@ -4,7 +4,8 @@ Each placed floor object gets the real asset its plan size came from; each surfa
 (or, for fridges, microwaves, safes and the like, in) its parent as an AI2-THOR child, spread over
 the parent's top so that no two children share a spot. If a parent could not be placed, its children
 move to another placed receptacle that accepts them, or are reported unplaced. The robot starts just
-inside the first door facing in; the VR user stands in front of the anchor, facing it.
+inside the first door facing in; the VR user starts at models.interaction.vr_start_pose's best pose
+(reaching and seeing the anchor), with the other valid poses as alternatives.
 """
 
 from __future__ import annotations
@@ -12,6 +13,7 @@ from __future__ import annotations
 import random
 
 from models.geometry import front
+from models.interaction.vr_pose import vr_start_pose
 from models.values import (
     AgentPose,
     Layout,
@@ -30,7 +32,6 @@ from models.world.catalogue import HOST_TYPES
 INSIDE_TYPES = {"Fridge", "Microwave", "Safe", "Cabinet", "Drawer", "GarbageCan", "Box", "Toilet", "SinkBasin",
                 "BathtubBasin", "Sink", "LaundryHamper", "WashingMachine", "ClothesDryer"}
 ROBOT_INSET = 0.6
-VR_DISTANCE = 0.6
 
 
 def _slots(parent: Placement, n: int) -> list[tuple[float, float]]:
@@ -64,22 +65,6 @@ def robot_start(plan: RoomPlan) -> AgentPose:
             "north": AgentPose(x=d.center, z=room.depth - ROBOT_INSET, rotation=180),
             "west": AgentPose(x=ROBOT_INSET, z=d.center, rotation=90),
             "east": AgentPose(x=room.width - ROBOT_INSET, z=d.center, rotation=270)}[d.wall]
-
-
-def vr_anchor(objects: list[SceneObject], graph: TaskGraph | None, width: float, depth: float) -> AgentPose | None:
-    """Where the VR user stands: in front of the anchor (or of the floor object that holds it), facing it."""
-    if graph is None or graph.anchor is None:
-        return None
-    anchor_type = graph.anchor.type
-    for o in objects:
-        holder = o if o.type == anchor_type else next((o for c in o.children if c.type == anchor_type), None)
-        if holder is not None:
-            fx, fz = front(holder.rotation)
-            dist = holder.size.z / 2 + VR_DISTANCE
-            x = min(max(holder.x + fx * dist, 0.2), width - 0.2)
-            z = min(max(holder.z + fz * dist, 0.2), depth - 0.2)
-            return AgentPose(x=round(x, 3), z=round(z, 3), rotation=(holder.rotation + 180) % 360, horizon=20)
-    return None
 
 
 def assemble_scene(plan: RoomPlan, layout: Layout, graph: TaskGraph | None = None, seed: int = 0,
@@ -120,8 +105,11 @@ def assemble_scene(plan: RoomPlan, layout: Layout, graph: TaskGraph | None = Non
                                    rotation=p.rotation, size=p.size, children=kids))
     room = plan.room
     provenance = [pv for pv in (graph.provenance if graph else None, plan.provenance, layout.provenance) if pv]
-    return Scene(id=plan.id, room=room, task_graph=graph, objects=objects, unplaced=unplaced,
-                 robot_start=robot_start(plan), vr_anchor=vr_anchor(objects, graph, room.width, room.depth),
-                 warnings=warnings, room_plan=plan, constraints=constraints,
-                 provenance=provenance + [Provenance(stage="scene", method="assemble", seed=seed)])
+    scene = Scene(id=plan.id, room=room, task_graph=graph, objects=objects, unplaced=unplaced,
+                  robot_start=robot_start(plan), warnings=warnings, room_plan=plan, constraints=constraints,
+                  provenance=provenance + [Provenance(stage="scene", method="assemble", seed=seed)])
+    vr = vr_start_pose(scene)
+    missing_pose = [f"VR start pose: {r}" for r in vr.reasons] if graph is not None and graph.anchor else []
+    return scene.model_copy(update={"vr_anchor": vr.best, "vr_alternatives": [c.pose for c in vr.alternatives[1:]],
+                                    "warnings": warnings + missing_pose})
 

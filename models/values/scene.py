@@ -40,7 +40,8 @@ class Scene(Value):
     objects: list[SceneObject]
     unplaced: list[Unplaced] = Field(default_factory=list)
     robot_start: AgentPose
-    vr_anchor: AgentPose | None = None
+    vr_anchor: AgentPose | None = None  # where the VR user starts (models.interaction.vr_start_pose's best)
+    vr_alternatives: list[AgentPose] = Field(default_factory=list)  # the other valid VR poses, best first
     warnings: list[str] = Field(default_factory=list)
     provenance: list[Provenance] = Field(default_factory=list)
     # what the scene was made from, so that a stored version can be re-opened and edited
