@@ -135,9 +135,8 @@ def cmd_demo(args) -> int:
 
 
 def cmd_data(args) -> int:
-    from models.datasets import DATASETS
-    from models.datasets.constraint_sets import write_dataset
-    for name in DATASETS:
+    from models.datasets.constraint_sets import ALL_SETS, write_dataset
+    for name in ALL_SETS:
         path, digest = write_dataset(name)
         print(f"{path}  sha256 {digest}")
     return 0
@@ -175,6 +174,23 @@ def cmd_train_language(args) -> int:
     adapter = train(cfg, training_examples())
     print(f"adapter: {adapter}  (loss curves: {Path(args.out) / 'loss.csv'}, {Path(args.out) / 'loss.png'})")
     print(f"use it: cp {adapter}/* models/weights/lora/   or   LoraParser(adapter='{adapter}')")
+    return 0
+
+
+def cmd_train_placement(args) -> int:
+    from models.placement.plan2place.agent import TrainConfig, export_weights, plot_curves, train
+    from models.placement.plan2place.network import NetConfig
+    net = NetConfig(hidden=args.hidden, fusion=args.fusion, sff=not args.no_sff).as_dict()
+    cfg = TrainConfig(episodes=args.episodes, batch=args.batch, lr=args.lr, seed=args.seed,
+                      use_global=not args.no_global, aux=not args.no_aux, net=net)
+    out = Path(args.out)
+    ckpt = train(cfg, out)
+    runs = {"with global state": out / "train.csv"} | ({"without": Path(args.compare) / "train.csv"}
+                                                        if args.compare else {})
+    png = plot_curves(runs, out / "curves.png")
+    export_weights(ckpt, out / "plan2place.pt")
+    print(f"checkpoint: {ckpt}  log: {out / 'train.csv'}  curves: {png}")
+    print(f"ship it: cp {out / 'plan2place.pt'} models/weights/plan2place/")
     return 0
 
 
@@ -238,7 +254,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("what", choices=["parser", "generate", "placement", "energy", "studio", "language"])
     p.add_argument("--n", type=int, default=30, help="instructions (generate) or plans (placement) to run")
     p.add_argument("--split", default="valid_unseen", help="ALFRED split to score (parser)")
-    p.add_argument("--dataset", default="seen", choices=["seen", "unseen_a", "unseen_b"],
+    p.add_argument("--dataset", default="seen", choices=["seen", "unseen_a", "unseen_b", "dense", "human"],
                    help="placement: which constraint dataset")
     p.add_argument("--solvers", default="dfs,milp,z3", help="placement: comma-separated solver names")
     p.add_argument("--seeds", type=int, default=5, help="placement: seeds per plan")
@@ -269,6 +285,19 @@ def build_parser() -> argparse.ArgumentParser:
     t.add_argument("--limit", type=int, default=None, help="train on the first N examples only")
     t.add_argument("--threads", type=int, default=None, help="torch CPU threads")
     t.set_defaults(run=cmd_train_language)
+    t = train.add_parser("placement", help="actor-critic training of Plan2Place on the seen training split")
+    t.add_argument("--out", default="runs/placement", metavar="DIR", help="checkpoint.pt, train.csv, curves.png")
+    t.add_argument("--episodes", type=int, default=2000)
+    t.add_argument("--batch", type=int, default=4, help="episodes per update")
+    t.add_argument("--lr", type=float, default=3e-4)
+    t.add_argument("--seed", type=int, default=0)
+    t.add_argument("--hidden", type=int, default=128)
+    t.add_argument("--fusion", choices=["cross", "self", "concat"], default="cross")
+    t.add_argument("--no-sff", action="store_true", help="ablation: the critic without semantic features")
+    t.add_argument("--no-aux", action="store_true", help="ablation: without the auxiliary loss")
+    t.add_argument("--no-global", action="store_true", help="ablation: the global state s_g zeroed")
+    t.add_argument("--compare", metavar="DIR", help="another run (e.g. --no-global) for the E_rel figure")
+    t.set_defaults(run=cmd_train_placement)
 
     p = sub.add_parser("data", help="rebuild the bundled constraint datasets (deterministic)")
     p.add_argument("what", choices=["build"])

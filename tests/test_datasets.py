@@ -7,11 +7,11 @@ from importlib import resources
 import pytest
 
 from models.constraints import read_constraints
-from models.datasets import DATASETS, load_dataset
+from models.datasets import ALL_SETS, load_dataset
 from models.datasets.constraint_sets import build_dataset, encode
 
 
-@pytest.mark.parametrize("name", sorted(DATASETS))
+@pytest.mark.parametrize("name", sorted(ALL_SETS))
 def test_stored_dataset_is_the_deterministic_rebuild(name):
     stored = resources.files("models").joinpath(f"data/datasets/{name}.jsonl.gz").read_bytes()
     assert gzip.decompress(encode(build_dataset(name))) == gzip.decompress(stored)
@@ -43,3 +43,24 @@ def test_unseen_sets_differ_and_carry_llm_habits(name):
     seen_rooms = [r.plan.room.width * r.plan.room.depth for r in load_dataset("seen")[:500]]
     rooms = [r.plan.room.width * r.plan.room.depth for r in records]
     assert abs(sum(rooms) / len(rooms) - sum(seen_rooms) / len(seen_rooms)) > 1.0  # other room sizes
+
+
+def test_dense_rooms_are_crowded_with_many_relations_and_unseen_instructions():
+    records = load_dataset("dense")
+    assert len(records) >= 250
+    cover = [sum(o.size.x * o.size.z for o in r.plan.objects) / (r.plan.room.width * r.plan.room.depth) for r in records]
+    assert min(cover) >= 0.45 and 0.5 <= sum(cover) / len(cover) <= 0.65
+    relations = [len(read_constraints(r.plan.constraints, [o.id for o in r.plan.objects]).objects[o.id].relations)
+                 for r in records[:50] for o in r.plan.objects]
+    assert sum(relations) / len(relations) >= 2
+    train = {r.instruction for r in load_dataset("seen", "train")}
+    assert not train & {r.instruction for r in records}
+
+
+def test_human_plans_keep_the_ithor_arrangement():
+    records = load_dataset("human")
+    assert len(records) >= 100 and all(r.reference is not None for r in records)
+    r = records[0]
+    assert {p.id for p in r.reference.placements} == {o.id for o in r.plan.objects}
+    assert all(0 <= p.x <= r.plan.room.width + 0.5 for p in r.reference.placements)
+    assert sum(any(o.role == "anchor" for o in r.plan.objects) for r in records) > 0.8 * len(records)

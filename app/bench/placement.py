@@ -33,12 +33,12 @@ COLUMNS = [("cnt", "CNT", 100), ("sr", "SR", 100), ("nav", "NAV", 100), ("key_na
            ("constraint_satisfaction", "constraints", 100), ("realism", "realism", 100), ("energy", "energy", 1)]
 
 
-def pick_plans(dataset: str, n: int):
-    """`n` plans evenly spaced over the set (the `seen` validation split)."""
+def pick_records(dataset: str, n: int):
+    """`n` records evenly spaced over the set (the `seen` validation split)."""
     split = "validation" if dataset == "seen" else None
     records = load_dataset(dataset, split)
     step = max(len(records) // n, 1)
-    return [r.plan for r in records[::step][:n]]
+    return records[::step][:n]
 
 
 def score(plan, layout) -> dict:
@@ -52,8 +52,13 @@ def score(plan, layout) -> dict:
 
 
 def run(dataset: str, solvers: list[str], n: int, seeds: int, budget: float | None) -> list[dict]:
-    plans = pick_plans(dataset, n)
+    records = pick_records(dataset, n)
+    plans = [r.plan for r in records]
     rows = []
+    # the `human` set keeps the arrangement people made: scored as a row of its own, like a solver
+    for seed in range(seeds):
+        rows.extend({"dataset": dataset, "solver": "human", "seed": seed, "plan": r.plan.id,
+                     **score(r.plan, r.reference)} for r in records if r.reference is not None)
     total = len(solvers) * seeds * len(plans)
     done, start = 0, time.perf_counter()
     for solver_name in solvers:
@@ -157,6 +162,8 @@ def main(args) -> int:
     out = Path(args.out or f"out/bench/placement-{args.dataset}")
     out.mkdir(parents=True, exist_ok=True)
     rows = run(args.dataset, solvers, args.n, args.seeds, args.budget)
+    if any(r["solver"] == "human" for r in rows):
+        solvers = ["human", *solvers]
     (out / "results.json").write_text(json.dumps(rows, indent=1))
     with open(out / "results.csv", "w", newline="") as f:
         writer = csv.DictWriter(f, fieldnames=list(rows[0]))

@@ -26,7 +26,7 @@ from pathlib import Path
 from models.datasets.llm_style import Habits, restyle
 from models.language.alfred import load_annotations
 from models.planning import ConstraintWriter, RoomPlanner, RoomPlannerSettings
-from models.values import ConstraintPlan
+from models.values import ConstraintPlan, Layout
 from models.world import ROOM_TYPES
 
 SEED = 20260101
@@ -54,11 +54,16 @@ DATASETS: dict[str, Recipe] = {
 }
 
 
+HARD_SETS = ("dense", "human")  # models.datasets.hard_sets
+ALL_SETS = (*DATASETS, *HARD_SETS)
+
+
 @dataclass(frozen=True)
 class PlanRecord:
     split: str  # train / validation (seen) or test (unseen sets)
     instruction: str
     plan: ConstraintPlan
+    reference: Layout | None = None  # the arrangement people made (`human` set only)
 
 
 def _rows(recipe: Recipe, rng: random.Random):
@@ -71,6 +76,11 @@ def _rows(recipe: Recipe, rng: random.Random):
 
 
 def build_dataset(name: str) -> list[PlanRecord]:
+    if name in HARD_SETS:
+        from models.datasets import hard_sets
+        if name == "human":
+            return hard_sets.build_human()
+        return hard_sets.build_dense([r for r in build_dataset("seen") if r.split == "validation"])
     recipe = DATASETS[name]
     rng = random.Random(f"{SEED}-{name}")
     planner, writer = RoomPlanner(recipe.settings), ConstraintWriter()
@@ -101,7 +111,9 @@ def build_dataset(name: str) -> list[PlanRecord]:
 
 def encode(records: list[PlanRecord]) -> bytes:
     lines = [json.dumps({"split": r.split, "instruction": r.instruction,
-                         "plan": r.plan.model_dump(mode="json", exclude_none=True)}, sort_keys=True)
+                         "plan": r.plan.model_dump(mode="json", exclude_none=True),
+                         **({"reference": r.reference.model_dump(mode="json", exclude_none=True)} if r.reference else {})},
+                        sort_keys=True)
              for r in records]
     return gzip.compress(("\n".join(lines) + "\n").encode(), mtime=0)
 
@@ -118,12 +130,13 @@ def write_dataset(name: str) -> tuple[Path, str]:
 
 
 def load_dataset(name: str, split: str | None = None) -> list[PlanRecord]:
-    if name not in DATASETS:
-        raise ValueError(f"unknown dataset {name!r}; available: {', '.join(DATASETS)}")
+    if name not in ALL_SETS:
+        raise ValueError(f"unknown dataset {name!r}; available: {', '.join(ALL_SETS)}")
     raw = resources.files("models").joinpath(f"data/datasets/{name}.jsonl.gz").read_bytes()
     out = []
     for line in gzip.decompress(raw).decode().splitlines():
         row = json.loads(line)
         if split is None or row["split"] == split:
-            out.append(PlanRecord(row["split"], row["instruction"], ConstraintPlan.model_validate(row["plan"])))
+            ref = Layout.model_validate(row["reference"]) if "reference" in row else None
+            out.append(PlanRecord(row["split"], row["instruction"], ConstraintPlan.model_validate(row["plan"]), ref))
     return out
