@@ -90,3 +90,23 @@ def test_assembled_scenes_carry_the_best_pose_and_alternatives():
     choice = vr_start_pose(gen.scene)
     assert gen.scene.vr_anchor == choice.best
     assert gen.scene.vr_alternatives == [c.pose for c in choice.alternatives[1:]]
+
+
+def test_benchmark_audit_rejects_what_it_should():
+    from app.bench.vrpose import audit
+    counter = obj("countertop-0", "CounterTop", 2.0, 0.5, 0, "anchor")
+    shelf = obj("shelvingunit-0", "ShelvingUnit", 2.0, 1.6, 0)  # tall, between the pose below and the counter
+    scene = room_with([counter, shelf], SIMPLE)
+    assert audit(scene, None) == "no pose"
+    assert audit(scene, AgentPose(x=2.0, z=0.1, rotation=180)) == "body crosses a wall"
+    assert audit(scene, AgentPose(x=2.0, z=0.9, rotation=180)).startswith("body collides with countertop-0")
+    assert audit(scene, AgentPose(x=2.0, z=2.2, rotation=180)) == "anchor out of arm's reach"
+    blocked = room_with([counter, obj("shelvingunit-0", "ShelvingUnit", 2.0, 1.005, 0)], SIMPLE)
+    pose = AgentPose(x=2.0, z=1.5, rotation=180, horizon=34)
+    assert audit(room_with([counter], SIMPLE), pose) is None
+    assert audit(blocked, pose) == "line of sight blocked by shelvingunit-0"
+    assert vr_start_pose(blocked).best is None or audit(blocked, vr_start_pose(blocked).best) is None
+    assert audit(room_with([counter], SIMPLE), pose.model_copy(update={"rotation": 0})) == \
+        "anchor outside the horizontal field of view"
+    choice = vr_start_pose(scene)
+    assert choice.best is not None and audit(scene, choice.best) is None

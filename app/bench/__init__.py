@@ -16,6 +16,8 @@ def run_benchmark(what: str, args) -> int:
         from app.bench.energy import main
     elif what == "language":
         from app.bench.language import main
+    elif what == "vrpose":
+        from app.bench.vrpose import main
     else:
         raise ValueError(f"unknown benchmark {what!r}")
     return main(args)
