@@ -20,10 +20,8 @@ import math
 import numpy as np
 import shapely
 
-from models.interaction.haptics import LIGHT_TYPES
 from models.interaction.symbolic import (
     INTERACT_RANGE,
-    KNIVES,
     SymbolicState,
     _sliced_type,
     execute_step,

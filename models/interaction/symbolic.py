@@ -6,14 +6,13 @@ closed receptacle cannot be taken and nothing can be put into a closed one; a mi
 closed, and opening it turns it off; SliceObject needs a knife in hand and makes a slice
 (`<id>|<Type>Sliced_1`, `EggCracked_0` for an egg, as AI2-THOR names them); every interaction needs the
 robot within INTERACT_RANGE of the object (AI2-THOR's default visibilityDistance); TeleportFull must land
-on free floor connected to the robot's start (a robot of ROBOT_RADIUS).
+on free floor connected to the robot's start (a robot of models.energy.weights.ROBOT_RADIUS).
 State tracking as ALFRED's: after every step, whatever is inside a closed cold source (the fridge) is
 cooled, and whatever is inside a heat source that is on (the microwave) is heated.
 """
 
 from __future__ import annotations
 
-import math
 from functools import cache
 from typing import Any
 
@@ -25,7 +24,6 @@ from scipy import ndimage
 from shapely.geometry import Point
 
 from models.energy import navigation as nav
-from models.energy.weights import ROBOT_RADIUS
 from models.geometry import Footprint
 from models.values.interaction import PlanStep, StepResult
 from models.world import catalogue
@@ -108,7 +106,6 @@ class SymbolicState(BaseModel):
     horizon: float = 30.0
     held: str | None = None
     room: tuple[float, float, float, float]  # xmin, zmin, xmax, zmax
-    examined: list[str] = []  # objects held within reach of a light source while it was on
     _reachable: Any = PrivateAttr(default=None)
     _grid: Any = PrivateAttr(default=None)
 
@@ -305,8 +302,6 @@ def _execute(state: SymbolicState, name: str, action: dict) -> str:
         if want and o.openable and o.is_open:
             raise ActionError(f"{o.id} must be closed to switch it on")
         o.is_on = want
-        if want and state.held and o.type in _light_types():
-            state.examined = sorted(set(state.examined) | {state.held})
         return f"{o.id} {'on' if want else 'off'}"
     # SliceObject
     if not o.sliceable:
@@ -323,7 +318,3 @@ def _execute(state: SymbolicState, name: str, action: dict) -> str:
 def _sliced_type(type_name: str) -> str:
     return "EggCracked" if type_name == "Egg" else f"{type_name}Sliced"
 
-
-def _light_types() -> frozenset[str]:
-    from models.interaction.haptics import LIGHT_TYPES
-    return LIGHT_TYPES

@@ -132,8 +132,8 @@ def vr_start_pose(scene: Scene, graph: TaskGraph | None = None) -> VRPoseChoice:
             angle = 360.0 * k / N_DIRECTIONS
             dx, dz = front(angle)
             px, pz = anchor.x + ring * dx, anchor.z + ring * dz
-            reason = _rejection(px, pz, room.width, room.depth, floor, others, face, front_only, anchor, fx, fz,
-                                holder, target)
+            reason = _rejection(px, pz, room.width, room.depth, floor, others, face, front_only, fx, fz, holder,
+                                target)
             if reason is not None:
                 rejected[reason] = rejected.get(reason, 0) + 1
                 continue
@@ -154,7 +154,7 @@ def vr_start_pose(scene: Scene, graph: TaskGraph | None = None) -> VRPoseChoice:
                         alternatives=valid, candidates_tried=tried, rejected=rejected, reasons=reasons)
 
 
-def _rejection(px, pz, width, depth, floor, others, face, front_only, anchor, fx, fz, holder, target) -> str | None:
+def _rejection(px, pz, width, depth, floor, others, face, front_only, fx, fz, holder, target) -> str | None:
     """Why a candidate is not valid (the first failed check), or None."""
     if min(px, pz, width - px, depth - pz) < BODY_RADIUS:
         return "against or outside a wall"
@@ -163,9 +163,9 @@ def _rejection(px, pz, width, depth, floor, others, face, front_only, anchor, fx
         return "collides with an object"
     if front_only and (px - holder.x) * fx + (pz - holder.z) * fz < holder.size.z / 2:
         return "not in front of the anchor"
-    nearest = shapely.ops.nearest_points(face, body)[0]
     if face.distance(body) > ARM_REACH:
         return "anchor out of arm's reach"
+    nearest = shapely.ops.nearest_points(face, body)[0]
     reach = LineString([(px, pz), (nearest.x, nearest.y)])
     if any(poly.intersects(reach) for _, poly, _ in others):
         return "arm's path blocked by an object"
