@@ -62,7 +62,25 @@ def _z3() -> Solver:
     return Z3Solver()
 
 
-SOLVERS: dict[str, Callable[[], Solver]] = {"dfs": _dfs, "milp": _milp, "milp_whole": _milp_whole, "z3": _z3}
+def _greedy() -> Solver:
+    from models.placement.greedy import GreedySolver
+    return GreedySolver()
+
+
+def _plan2place() -> Solver:
+    from models.placement.plan2place.solver import Plan2PlaceSolver
+    return Plan2PlaceSolver()
+
+
+def _plan2place_untrained() -> Solver:
+    """The Plan2Place network with its initial weights (seed 0): what training adds is measured against it."""
+    from models.placement.plan2place.solver import Plan2PlaceSolver, untrained_network
+    return Plan2PlaceSolver(untrained_network(), name="plan2place_untrained")
+
+
+SOLVERS: dict[str, Callable[[], Solver]] = {"greedy": _greedy, "plan2place": _plan2place,
+                                            "plan2place_untrained": _plan2place_untrained, "dfs": _dfs, "milp": _milp,
+                                            "milp_whole": _milp_whole, "z3": _z3}
 DEFAULT_SOLVER = "dfs"
 
 

@@ -1,0 +1,123 @@
+"""The greedy placer: for each object in the solvers' order, the candidate pose of lowest immediate energy.
+
+It is the simplest thing that could replace Plan2Place (issue 8): the same candidates, hard filters and
+per-step energy (models.energy.vectorised with the episode's remaining objects pending), no look-ahead.
+`Episode` is the step machinery both share.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from models.energy.vectorised import CandidateEnergy
+from models.energy.weights import WEIGHTS
+from models.placement.base import Fixed, PlacementStep, StepObserver
+from models.placement.candidates import CandidateScorer, PlacedObject
+from models.placement.problem import PlacementProblem
+from models.placement.result import make_layout
+from models.values import ConstraintPlan, Layout, PlanObject
+
+NO_ROOM = "no collision-free position left in the room"
+
+
+@dataclass
+class Options:
+    """The candidates of the current object that pass the hard filters, with their energy terms."""
+
+    obj: PlanObject
+    cands: np.ndarray  # (N, 3) every candidate of the object
+    feasible: np.ndarray  # (M,) indices into cands
+    terms: dict[str, np.ndarray]  # each (M,): energy of placed + candidate, remaining objects pending
+    soft: np.ndarray  # (M,) the constraint score of candidates.CandidateScorer
+
+
+class Episode:
+    """Objects placed one at a time in `problem.order`; fixed poses are taken as they are."""
+
+    def __init__(self, plan: ConstraintPlan, fixed: Fixed | None = None):
+        self.problem = PlacementProblem.from_plan(plan, fixed)
+        self.scorer = CandidateScorer(self.problem)
+        self.order = self.problem.order
+        self.i = 0
+        self.placed: list[PlacedObject] = []
+        self.failed: dict[str, str] = {}
+        self.energy = 0.0  # energy after the last step (objects still to come pending)
+        self.terms: dict[str, float] = {}
+        self.n = max(len(self.problem.plan.objects), 1)
+
+    @property
+    def done(self) -> bool:
+        return self.i >= len(self.order)
+
+    def pending(self) -> set[str]:
+        return {o.id for o in self.order[self.i + 1:]}
+
+    def options(self) -> Options:
+        obj = self.order[self.i]
+        if obj.id in self.problem.fixed:
+            cands = np.array([self.problem.fixed[obj.id]], float)
+            soft = np.zeros(1)
+            feasible = np.array([0])
+        else:
+            cands, scores, _ = self.scorer.evaluate(obj, self.placed, strict=True)
+            if not np.isfinite(scores).any():  # relax the front-clearance rules before giving up
+                cands, scores, _ = self.scorer.evaluate(obj, self.placed, strict=False)
+            feasible = np.flatnonzero(np.isfinite(scores))
+            soft = scores[feasible] if len(feasible) else np.zeros(0)
+        terms = CandidateEnergy(self.problem, self.placed, pending=self.pending()).score(obj, cands[feasible]) \
+            if len(feasible) else {}
+        return Options(obj, cands, feasible, terms, soft)
+
+    def apply(self, opts: Options, pick: int | None) -> float:
+        """Place `opts.obj` at feasible candidate `pick` (None: it stays unplaced); the reward (energy drop)."""
+        if pick is None:
+            self.failed[opts.obj.id] = NO_ROOM
+            after = self.energy + WEIGHTS["missing"] / self.n
+            self.terms = {**self.terms, "missing": self.terms.get("missing", 0.0) + 1 / self.n}
+        else:
+            x, z, rot = (float(v) for v in opts.cands[opts.feasible[pick]])
+            self.placed.append(self.scorer.place(opts.obj, x, z, rot))
+            self.terms = {k: float(v[pick]) for k, v in opts.terms.items()}
+            after = self.terms["total"]
+        reward = self.energy - after
+        self.energy = after
+        self.i += 1
+        return reward
+
+    def step_record(self, opts: Options, pick: int | None, probs: np.ndarray) -> PlacementStep:
+        """What the studio shows: `probs` (M,) over the feasible candidates; -inf for the rest."""
+        scores = np.full(len(opts.cands), -np.inf)
+        scores[opts.feasible] = probs
+        pose = (None, None, None) if pick is None else tuple(float(v) for v in opts.cands[opts.feasible[pick]])
+        return PlacementStep(opts.obj.id, *pose, opts.cands, scores, dict(self.terms))
+
+    def layout(self, solver: str, seed: int, elapsed: float) -> Layout:
+        poses = {p.id: (p.x, p.z, p.rotation) for p in self.placed}
+        return make_layout(self.problem, poses, self.failed, solver, seed, elapsed,
+                           default_reason="not reached")
+
+
+class GreedySolver:
+    name = "greedy"
+
+    def solve(self, plan: ConstraintPlan, seed: int = 0, time_budget_s: float | None = None,
+              observer: StepObserver | None = None, fixed: Fixed | None = None) -> Layout:
+        start = time.perf_counter()
+        rng = np.random.default_rng(seed)
+        ep = Episode(plan, fixed)
+        while not ep.done:
+            opts = ep.options()
+            pick = None
+            probs = np.zeros(0)
+            if len(opts.feasible):
+                total = opts.terms["total"] + rng.uniform(0, 1e-9, len(opts.feasible))  # seeded tie-break
+                pick = int(np.argmin(total))
+                probs = np.exp(-(total - total.min()) / 0.05)
+                probs /= probs.sum()
+            ep.apply(opts, pick)
+            if observer is not None:
+                observer(ep.step_record(opts, pick, probs))
+        return ep.layout(self.name, seed, time.perf_counter() - start)

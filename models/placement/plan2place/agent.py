@@ -1,0 +1,210 @@
+"""Rollouts and actor-critic training of Plan2Place (paper, Supp.: losses weighted 1 / 0.5 / 0.1 / 0.01,
+Adam, gamma 0.99). Seeded, resumable from `checkpoint.pt` in the run directory, CSV log per episode.
+
+Reward per step: the drop of the vectorised energy (objects still to come pending, so the episode's
+return is minus the final layout's energy, E_missing included). The auxiliary loss aligns the critic with
+the semantic score as the paper does; the score (in [0, 1]) is shifted by -1 onto the return's scale
+(0 for a layout the scorer finds human-like, -1 for one it does not).
+"""
+
+from __future__ import annotations
+
+import csv
+import json
+import time
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+
+import numpy as np
+import torch
+
+from models.placement.greedy import Episode
+from models.placement.plan2place.features import choose_subset, observe
+from models.placement.plan2place.network import NetConfig, Plan2PlaceNet
+from models.semantic import default_scorer, items_of
+
+W_POLICY, W_VALUE, W_AUX, W_ENTROPY = 1.0, 0.5, 0.1, 0.01
+GAMMA = 0.99
+LOG_FIELDS = ("episode", "plan", "objects", "return", "rel", "collision", "oob", "nav", "aff", "missing", "total",
+              "policy_loss", "value_loss", "aux_loss", "entropy", "seconds")
+
+
+@dataclass
+class TrainConfig:
+    episodes: int = 2000
+    batch: int = 4
+    lr: float = 3e-4
+    seed: int = 0
+    use_global: bool = True
+    aux: bool = True
+    net: dict = field(default_factory=lambda: NetConfig().as_dict())
+    dataset: str = "seen"
+    checkpoint_every: int = 20
+
+
+def semantic_of(ep: Episode) -> tuple[torch.Tensor, float]:
+    room = ep.problem.plan.room
+    types = {o.id: o.type for o in ep.problem.plan.objects}
+    s = default_scorer().score(room.type, room.width, room.depth, items_of(ep.placed, types))
+    return torch.from_numpy(s.features), s.score
+
+
+def rollout(net: Plan2PlaceNet, plan, rng: np.random.Generator, sample: bool, use_global: bool = True,
+            fixed=None, observer=None, grad: bool = False) -> tuple[Episode, list[dict]]:
+    """One episode; `sample`: draw actions from the policy (training), else take the most probable."""
+    ep = Episode(plan, fixed)
+    trace = []
+    while not ep.done:
+        opts = ep.options()
+        pick, probs_all = None, np.zeros(len(opts.feasible))
+        if len(opts.feasible) and opts.obj.id in ep.problem.fixed:
+            pick, probs_all = 0, np.ones(1)
+        elif len(opts.feasible):
+            subset = choose_subset(opts, rng)
+            obs = observe(ep, opts, subset, use_global)
+            sem, r_vlm = semantic_of(ep) if net.cfg.sff or grad else (None, 0.0)
+            with torch.set_grad_enabled(grad):
+                logits, value = net(obs, sem)
+            dist = torch.distributions.Categorical(logits=logits)
+            a = int(dist.sample()) if sample else int(torch.argmax(logits))
+            pick = int(subset[a])
+            probs_all[subset] = torch.softmax(logits.detach(), 0).numpy()
+            trace.append({"logp": dist.log_prob(torch.tensor(a)), "entropy": dist.entropy(), "value": value,
+                          "r_vlm": r_vlm, "reward": 0.0})
+        reward = ep.apply(opts, pick)
+        if trace:  # a fixed or failed step after a decision: its energy change counts for that decision
+            trace[-1]["reward"] += reward
+        if observer is not None:
+            observer(ep.step_record(opts, pick, probs_all))
+    return ep, trace
+
+
+def losses(trace: list[dict], aux: bool) -> dict[str, torch.Tensor]:
+    rewards = [t["reward"] for t in trace]
+    returns, g = [], 0.0
+    for r in reversed(rewards):
+        g = r + GAMMA * g
+        returns.append(g)
+    ret = torch.tensor(returns[::-1], dtype=torch.float32)
+    value = torch.stack([t["value"] for t in trace])
+    logp = torch.stack([t["logp"] for t in trace])
+    ent = torch.stack([t["entropy"] for t in trace])
+    adv = ret - value
+    target = torch.tensor([t["r_vlm"] - 1.0 for t in trace], dtype=torch.float32)
+    out = {"policy_loss": -(logp * adv.detach()).mean(), "value_loss": adv.pow(2).mean(),
+           "aux_loss": (value - target).pow(2).mean() if aux else torch.zeros(()), "entropy": ent.mean()}
+    out["loss"] = W_POLICY * out["policy_loss"] + W_VALUE * out["value_loss"] + W_AUX * out["aux_loss"] \
+        - W_ENTROPY * out["entropy"]
+    return out
+
+
+def save_checkpoint(path: Path, net, opt, cfg: TrainConfig, episode: int, rng: np.random.Generator) -> None:
+    tmp = path.with_suffix(".tmp")
+    torch.save({"net": net.state_dict(), "opt": opt.state_dict(), "config": asdict(cfg), "episode": episode,
+                "rng": rng.bit_generator.state, "torch_rng": torch.get_rng_state()}, tmp)
+    tmp.replace(path)
+
+
+def train(cfg: TrainConfig, out_dir: Path, progress: bool = True) -> Path:
+    """Train (or resume) in `out_dir`; returns the checkpoint path."""
+    from models.datasets import load_dataset
+    out_dir.mkdir(parents=True, exist_ok=True)
+    ckpt, log = out_dir / "checkpoint.pt", out_dir / "train.csv"
+    torch.manual_seed(cfg.seed)
+    torch.set_num_threads(1)
+    rng = np.random.default_rng(cfg.seed)
+    net = Plan2PlaceNet(NetConfig(**cfg.net))
+    opt = torch.optim.Adam(net.parameters(), lr=cfg.lr)
+    start = 0
+    if ckpt.exists():
+        state = torch.load(ckpt, weights_only=False)
+        if state["config"] != asdict(cfg) | {"episodes": state["config"]["episodes"]}:
+            raise ValueError(f"{ckpt} was trained with another configuration: {state['config']}")
+        net.load_state_dict(state["net"])
+        opt.load_state_dict(state["opt"])
+        start = state["episode"]
+        rng.bit_generator.state = state["rng"]
+        torch.set_rng_state(state["torch_rng"])
+    (out_dir / "config.json").write_text(json.dumps(asdict(cfg), indent=1))
+    plans = [r.plan for r in load_dataset(cfg.dataset, "train")]
+    order = np.random.default_rng(cfg.seed).permutation(len(plans))
+    new = not log.exists()
+    bar = None
+    if progress:
+        from tqdm import tqdm
+        bar = tqdm(total=cfg.episodes, initial=start, desc="train placement", unit="ep")
+    with log.open("a", newline="") as fh:
+        writer = csv.DictWriter(fh, LOG_FIELDS)
+        if new:
+            writer.writeheader()
+        batch: list[tuple] = []
+        for episode in range(start, cfg.episodes):
+            t0 = time.perf_counter()
+            plan = plans[order[episode % len(plans)]]
+            ep, trace = rollout(net, plan, rng, sample=True, use_global=cfg.use_global, grad=True)
+            batch.append((ep, trace, plan, t0))
+            if len(batch) == cfg.batch or episode == cfg.episodes - 1:
+                parts = [losses(tr, cfg.aux) for _, tr, _, _ in batch if tr]
+                if parts:
+                    loss = torch.stack([p["loss"] for p in parts]).mean()
+                    opt.zero_grad()
+                    loss.backward()
+                    torch.nn.utils.clip_grad_norm_(net.parameters(), 1.0)
+                    opt.step()
+                for k, (b_ep, tr, b_plan, b_t0) in enumerate(batch):
+                    p = parts[min(k, len(parts) - 1)] if parts else {}
+                    terms = b_ep.terms
+                    writer.writerow({"episode": episode - len(batch) + 1 + k, "plan": b_plan.id,
+                                     "objects": len(b_plan.objects), "return": -b_ep.energy,
+                                     **{t: round(terms.get(t, 0.0), 5) for t in LOG_FIELDS[4:11]},
+                                     **{t: round(float(p[t].detach()), 5) if t in p else "" for t in LOG_FIELDS[11:15]},
+                                     "seconds": round(time.perf_counter() - b_t0, 3)})
+                fh.flush()
+                batch = []
+                if (episode + 1) % cfg.checkpoint_every < cfg.batch or episode == cfg.episodes - 1:
+                    save_checkpoint(ckpt, net, opt, cfg, episode + 1, rng)
+            if bar is not None:
+                bar.update(1)
+                bar.set_postfix(energy=f"{ep.energy:.2f}")
+    if bar is not None:
+        bar.close()
+    return ckpt
+
+
+def export_weights(ckpt: Path, out: Path) -> None:
+    """The shippable part of a checkpoint: the network's weights in fp16 and its configuration."""
+    state = torch.load(ckpt, weights_only=False)
+    torch.save({"net": {k: v.half() for k, v in state["net"].items()}, "config": state["config"],
+                "episode": state["episode"]}, out)
+
+
+def plot_curves(runs: dict[str, Path], out: Path, window: int = 50) -> Path:
+    """Return, energy terms, losses, and E_rel of each run (the paper's figure on the global state)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    def smooth(v):
+        v = np.asarray(v, float)
+        k = max(1, min(window, len(v)))
+        return np.convolve(v, np.ones(k) / k, mode="valid")
+
+    data = {name: list(csv.DictReader(p.open())) for name, p in runs.items()}
+    panels = [("return", ["return"]), ("energy terms", ["rel", "collision", "oob", "nav", "aff", "missing"]),
+              ("losses", ["policy_loss", "value_loss", "aux_loss", "entropy"]), ("E_rel", ["rel"])]
+    fig, axes = plt.subplots(1, 4, figsize=(16, 3.5))
+    first = next(iter(data))
+    for ax, (title, keys) in zip(axes, panels):
+        sources = data.items() if title == "E_rel" else [(first, data[first])]
+        for name, rows in sources:
+            for k in keys:
+                vals = [float(r[k]) for r in rows if r.get(k) not in ("", None)]
+                if vals:
+                    ax.plot(smooth(vals), label=f"{name}" if title == "E_rel" else k)
+        ax.set_title(title if title != "E_rel" else "average E_rel (with / without global state)")
+        ax.set_xlabel("episode")
+        ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(out, dpi=80)
+    plt.close(fig)
+    return out

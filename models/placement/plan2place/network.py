@@ -1,0 +1,75 @@
+"""The actor-critic network: MSCF (global MLP + two-layer GraphSAGE with average pooling, fused by
+multi-head cross-attention and a feed-forward network), SFF (gated projection of the semantic features)
+feeding the critic, and an actor that scores each candidate pose against the fused state."""
+
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass
+
+import torch
+from torch import nn
+
+from models.placement.plan2place.features import CAND_DIM, GLOBAL_DIM, NODE_DIM, Observation
+
+
+@dataclass(frozen=True)
+class NetConfig:
+    hidden: int = 128
+    fusion: str = "cross"  # cross | self | concat
+    sff: bool = True
+    semantic_dim: int = 8
+    heads: int = 4
+
+    def as_dict(self) -> dict:
+        return asdict(self)
+
+
+class Plan2PlaceNet(nn.Module):
+    def __init__(self, cfg: NetConfig = NetConfig()):
+        super().__init__()
+        from torch_geometric.nn import SAGEConv  # lazy: only the agent needs torch_geometric
+        h = cfg.hidden
+        self.cfg = cfg
+        self.glob = nn.Sequential(nn.Linear(GLOBAL_DIM, h), nn.ReLU(), nn.Linear(h, h))
+        self.sage1, self.sage2 = SAGEConv(NODE_DIM, h), SAGEConv(h, h)
+        if cfg.fusion in ("cross", "self"):
+            self.attn = nn.MultiheadAttention(h, cfg.heads, batch_first=True)
+        else:
+            self.cat = nn.Linear(2 * h, h)
+        self.ffn = nn.Sequential(nn.LayerNorm(h), nn.Linear(h, h), nn.ReLU(), nn.Linear(h, h))
+        if cfg.sff:
+            self.gate = nn.Linear(cfg.semantic_dim, h)
+            self.proj = nn.Linear(cfg.semantic_dim, h)
+            self.norm = nn.LayerNorm(h)
+            self.compress = nn.Linear(h, h // 2)
+        self.critic = nn.Sequential(nn.Linear(h + (h // 2 if cfg.sff else 0), h), nn.ReLU(), nn.Linear(h, 1))
+        self.cand = nn.Sequential(nn.Linear(CAND_DIM, h), nn.ReLU())
+        self.actor = nn.Sequential(nn.Linear(2 * h, h), nn.ReLU(), nn.Linear(h, 1))
+
+    def state(self, obs: Observation) -> torch.Tensor:
+        hg = self.glob(torch.from_numpy(obs.glob))  # (h,)
+        x = torch.from_numpy(obs.nodes)
+        ei = torch.from_numpy(obs.edges)
+        hl = torch.relu(self.sage2(torch.relu(self.sage1(x, ei)), ei))  # (V, h)
+        pooled = hl.mean(0)
+        if self.cfg.fusion == "cross":  # global as the query, local nodes (and their mean) as keys/values
+            kv = torch.cat([pooled[None], hl])[None]
+            fused = self.attn(hg[None, None], kv, kv, need_weights=False)[0][0, 0] + hg
+        elif self.cfg.fusion == "self":
+            seq = torch.stack([hg, pooled])[None]
+            fused = self.attn(seq, seq, seq, need_weights=False)[0][0].mean(0) + hg
+        else:
+            fused = self.cat(torch.cat([hg, pooled]))
+        return fused + self.ffn(fused)
+
+    def forward(self, obs: Observation, semantic: torch.Tensor | None = None) -> tuple[torch.Tensor, torch.Tensor]:
+        """(logits over the K candidates, value)."""
+        f = self.state(obs)
+        c = self.cand(torch.from_numpy(obs.cands))
+        logits = self.actor(torch.cat([f.expand(len(c), -1), c], 1)).squeeze(1)
+        crit_in = f
+        if self.cfg.sff:
+            s = semantic if semantic is not None else torch.zeros(self.cfg.semantic_dim)
+            fs = self.compress(self.norm(torch.sigmoid(self.gate(s)) * self.proj(s)))
+            crit_in = torch.cat([f, fs])
+        return logits, self.critic(crit_in).squeeze()
