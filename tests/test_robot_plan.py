@@ -175,3 +175,16 @@ def test_generated_scenes_plans_hold_or_say_why():
         assert check.ok == (not plan.problems), (instruction, plan.problems, check.failure)
         if not check.ok:
             assert check.failure
+
+
+def test_knife_taken_from_a_non_receptacle_is_put_down_on_a_surface():
+    from interaction_scenes import obj, on
+    scene = kitchen(HEAT_SLICED, drop=("Knife",))
+    sink = obj("sink-0", "Sink", 4.4, 4.6, 180, children=(on(0.8, "knife-0", "Knife", 4.4, 4.6, "inference"),))
+    scene = scene.model_copy(update={"objects": [*scene.objects, sink]})
+    house = to_house(scene)
+    plan = robot_plan(scene, house)
+    assert plan.problems == []
+    puts = [s.action["objectId"] for s in plan.steps if s.action["action"] == "PutObject"]
+    assert "Sink|1|0" not in puts  # AI2-THOR's Sink is not a receptacle (its basin is)
+    assert check_plan(house, plan, HEAT_SLICED).ok

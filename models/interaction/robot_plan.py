@@ -192,6 +192,17 @@ def robot_plan(scene: Scene | None, house: dict, graph: TaskGraph | None = None,
                      problems=b.problems)
 
 
+def _put_back_place(state: SymbolicState, knife: str) -> str | None:
+    """Where the knife goes after slicing: where it came from if that is a receptacle (a knife on a Sink
+    asset is not: its basin is), else the nearest open-topped receptacle on the floor."""
+    home = state.objects[knife].parent
+    if home is not None and state.objects[home].receptacle:
+        return home
+    k = state.objects[knife]
+    surfaces = [o for o in state.objects.values() if o.on_floor and o.receptacle and not o.openable]
+    return min(surfaces, key=lambda o: (math.hypot(o.x - k.x, o.z - k.z), o.id)).id if surfaces else None
+
+
 def _write(b: _Builder, graph: TaskGraph, ids: dict[str, str]) -> None:
     target = ids["target"]
     if graph.sliced or "knife" in ids:
@@ -199,7 +210,7 @@ def _write(b: _Builder, graph: TaskGraph, ids: dict[str, str]) -> None:
         if knife is None:
             b.problems.append("the task slices but names no knife")
             return
-        home = b.state.objects[knife].parent
+        home = _put_back_place(b.state, knife)
         if not b.fetch(knife) or not b.goto(target):
             return
         t = b.state.objects[target]
@@ -209,7 +220,10 @@ def _write(b: _Builder, graph: TaskGraph, ids: dict[str, str]) -> None:
                 return
         if not b.act("SliceObject", target, f"slice {target} with {knife}"):
             return
-        if home is None or not b.put(home):
+        if home is None:
+            b.problems.append(f"nowhere to put {knife} down after slicing")
+            return
+        if not b.put(home):
             return
         target = slice_id(target, b.state.objects[target].type)
     if not b.fetch(target):

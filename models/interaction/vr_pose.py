@@ -81,10 +81,16 @@ def usable_face(anchor: SceneObject, holder: SceneObject):
 
 def circle_radius(anchor: SceneObject, holder: SceneObject) -> float:
     """Fixed distance of the candidates from the anchor's centre: far enough that the body clears the
-    anchor (or its holder) in front of it."""
+    anchor's holder (itself on the floor) by STAND_GAP in front of it, or, for an object on a holder used
+    from any side (a table), at the holder's edge nearest the anchor."""
     fx, fz = front(holder.rotation)
-    to_front = holder.size.z / 2 + (holder.x - anchor.x) * fx + (holder.z - anchor.z) * fz
-    return round(max(to_front, anchor.size.z / 2) + BODY_RADIUS + STAND_GAP, 4)
+    rx, rz = fz, -fx
+    lz = (anchor.x - holder.x) * fx + (anchor.z - holder.z) * fz  # anchor centre in the holder's frame
+    lx = (anchor.x - holder.x) * rx + (anchor.z - holder.z) * rz
+    to_edge = holder.size.z / 2 - lz
+    if anchor is not holder and not used_from_front(holder.type):
+        to_edge = min(to_edge, holder.size.z / 2 + lz, holder.size.x / 2 - abs(lx))
+    return round(max(to_edge, anchor.size.z / 2) + BODY_RADIUS + STAND_GAP, 4)
 
 
 def _sight_blocker(eye: tuple[float, float], target: tuple[float, float, float],
