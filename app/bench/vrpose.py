@@ -122,7 +122,7 @@ def evaluate(scene: Scene, graph) -> dict:
 
 def main(args) -> int:
     n = args.n
-    n_slow = min(getattr(args, "n_slow", None) or 18, n)
+    n_slow = min(args.n_slow, n)
     solvers = [s for s in (args.solvers or "dfs,z3,milp").split(",") if s]
     from models.datasets.constraint_sets import DATASETS
     pipelines = {"usual": Pipeline(), "crowded": Pipeline(planner=RoomPlanner(DATASETS["unseen_a"].settings))}
@@ -141,7 +141,8 @@ def main(args) -> int:
     out = Path(args.out) if args.out else RESULTS
     out.mkdir(parents=True, exist_ok=True)
     (out / "vrpose.json").write_text(json.dumps(rows, indent=1))
-    (out / "vrpose.md").write_text(f"```\n$ h3ds bench vrpose --n {n}\n{report}\n```\n")
+    (out / "vrpose.md").write_text(f"```\n$ h3ds bench vrpose --n {n} --n-slow {n_slow} --solvers {','.join(solvers)}"
+                                   f"\n{report}\n```\n")
     return 0
 
 
