@@ -188,3 +188,18 @@ def test_knife_taken_from_a_non_receptacle_is_put_down_on_a_surface():
     puts = [s.action["objectId"] for s in plan.steps if s.action["action"] == "PutObject"]
     assert "Sink|1|0" not in puts  # AI2-THOR's Sink is not a receptacle (its basin is)
     assert check_plan(house, plan, HEAT_SLICED).ok
+
+
+def test_an_object_walled_off_from_the_robot_is_reported():
+    scene = kitchen(LOOK)
+    house = to_house(scene)
+    lamp = next(o for o in house["objects"] if o["id"].startswith("FloorLamp"))
+    lamp["position"].update(x=0.4, z=0.3)
+    wall = [{"id": f"CounterTop|9|{k}", "assetId": "Countertop_I_10x2", "position": {"x": x, "y": 0.47, "z": 1.2},
+             "rotation": {"x": 0, "y": 0, "z": 0}, "children": []} for k, x in enumerate((1.52, 4.0))]
+    house["objects"] += wall  # two counters across the room: the lamp's side is cut off from the robot's
+    house["metadata"]["agent"]["position"].update(x=2.5, z=4.0)
+    plan = robot_plan(scene, house)
+    assert any("no free floor reachable" in p and "FloorLamp" in p for p in plan.problems)
+    check = check_plan(house, plan, LOOK)
+    assert not check.ok and "FloorLamp" in check.failure and "on" in check.failure
