@@ -29,7 +29,7 @@ class VRPoseChoice(Value):
     why each rejected candidate failed."""
 
     anchor_id: str | None = None
-    radius: float | None = None
+    radius: float | None = None  # of the circle the valid poses are on (the last one tried when none is)
     best: AgentPose | None = None
     alternatives: list[VRCandidate] = Field(default_factory=list)
     candidates_tried: int = 0
