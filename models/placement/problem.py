@@ -12,7 +12,7 @@ DOOR_CLEARANCE = 0.9  # depth of the free rectangle kept inside every door
 # The one time-budget rule for every solver (issue 7): this many seconds per object of the plan, unless
 # the caller passes a budget. DFS stops at its first complete layout (as Holodeck's does); MILP and Z3
 # use what they need of it; nothing may take longer.
-PER_OBJECT_BUDGET_S = 0.2
+PER_OBJECT_BUDGET_S = 0.5
 
 
 def time_budget(plan: ConstraintPlan, given: float | None = None) -> float:
