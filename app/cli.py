@@ -251,7 +251,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.set_defaults(run=cmd_demo)
 
     p = sub.add_parser("bench", help="benchmarks that print figures: parser, generate, placement, energy")
-    p.add_argument("what", choices=["parser", "generate", "placement", "energy", "studio", "language", "vrpose"])
+    p.add_argument("what", choices=["parser", "generate", "placement", "energy", "studio", "language", "vrpose",
+                                          "plan2place"])
     p.add_argument("--n", type=int, default=30, help="instructions (generate) or plans (placement) to run")
     p.add_argument("--split", default="valid_unseen", help="ALFRED split to score (parser)")
     p.add_argument("--dataset", default="seen", choices=["seen", "unseen_a", "unseen_b", "dense", "human"],
@@ -265,6 +266,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--decoding", type=int, default=0, metavar="N", help="language: also compare constrained "
                    "decoding with free decoding + MiniLM snapping on N ID instructions")
     p.add_argument("--n-slow", type=int, default=18, help="vrpose: scenes also placed by the slower solvers")
+    p.add_argument("--runs", default=None, help="plan2place: comma-separated checkpoints or training folders "
+                   "(default: the shipped weights)")
     p.set_defaults(run=cmd_bench)
 
     p = sub.add_parser("train", help="train a model (seeded, resumable, loss curves): language")

@@ -12,6 +12,8 @@ def run_benchmark(what: str, args) -> int:
         from app.bench.placement import main
     elif what == "studio":
         from app.bench.studio import main
+    elif what == "plan2place":
+        from app.bench.plan2place import main
     elif what == "energy":
         from app.bench.energy import main
     elif what == "language":

@@ -7,6 +7,7 @@ per-step energy (models.energy.vectorised with the episode's remaining objects p
 
 from __future__ import annotations
 
+import copy
 import time
 from dataclasses import dataclass
 
@@ -47,6 +48,7 @@ class Episode:
         self.energy = 0.0  # energy after the last step (objects still to come pending)
         self.terms: dict[str, float] = {}
         self.n = max(len(self.problem.plan.objects), 1)
+        self._energy = CandidateEnergy(self.problem, [], pending=self.pending())  # updated step by step
 
     @property
     def done(self) -> bool:
@@ -67,19 +69,21 @@ class Episode:
                 cands, scores, _ = self.scorer.evaluate(obj, self.placed, strict=False)
             feasible = np.flatnonzero(np.isfinite(scores))
             soft = scores[feasible] if len(feasible) else np.zeros(0)
-        terms = CandidateEnergy(self.problem, self.placed, pending=self.pending()).score(obj, cands[feasible]) \
-            if len(feasible) else {}
+        terms = self._energy.score(obj, cands[feasible]) if len(feasible) else {}
         return Options(obj, cands, feasible, terms, soft)
 
     def apply(self, opts: Options, pick: int | None) -> float:
         """Place `opts.obj` at feasible candidate `pick` (None: it stays unplaced); the reward (energy drop)."""
         if pick is None:
             self.failed[opts.obj.id] = NO_ROOM
+            self._energy = copy.copy(self._energy)
+            self._energy.pending = {o.id for o in self.order[self.i + 2:]}
             after = self.energy + WEIGHTS["missing"] / self.n
             self.terms = {**self.terms, "missing": self.terms.get("missing", 0.0) + 1 / self.n}
         else:
             x, z, rot = (float(v) for v in opts.cands[opts.feasible[pick]])
             self.placed.append(self.scorer.place(opts.obj, x, z, rot))
+            self._energy = self._energy.after(self.placed[-1], pending={o.id for o in self.order[self.i + 2:]})
             self.terms = {k: float(v[pick]) for k, v in opts.terms.items()}
             after = self.terms["total"]
         reward = self.energy - after

@@ -26,6 +26,7 @@ GLOBAL_DIM = 5
 EDGE_DIM = 5
 NODE_DIM = 10 + EMBED_DIM + EDGE_DIM
 CAND_DIM = 9 + len(TERMS) + 2
+ENERGY_GAP = 9 + len(TERMS)  # column of a candidate's per-step energy above the best candidate's
 
 
 @dataclass

@@ -1,6 +1,13 @@
 """The actor-critic network: MSCF (global MLP + two-layer GraphSAGE with average pooling, fused by
 multi-head cross-attention and a feed-forward network), SFF (gated projection of the semantic features)
-feeding the critic, and an actor that scores each candidate pose against the fused state."""
+feeding the critic, and an actor that scores each candidate pose against the fused state.
+
+The actor is a residual over the immediate energy: its logit for a candidate is the network's output minus
+the candidate's per-step energy above the best one, divided by `prior_temp`. The untrained network is thus
+close to the greedy placer, and what training learns is where to depart from it (look-ahead). Without the
+prior (prior_temp=0) the policy starts uniform over ~48 candidates and, in 320 CPU episodes, reached a final
+energy of 0.84 against greedy's 0.40 on 12 validation plans (README, Plan2Place).
+"""
 
 from __future__ import annotations
 
@@ -9,7 +16,7 @@ from dataclasses import asdict, dataclass
 import torch
 from torch import nn
 
-from models.placement.plan2place.features import CAND_DIM, GLOBAL_DIM, NODE_DIM, Observation
+from models.placement.plan2place.features import CAND_DIM, ENERGY_GAP, GLOBAL_DIM, NODE_DIM, Observation
 
 
 @dataclass(frozen=True)
@@ -19,6 +26,7 @@ class NetConfig:
     sff: bool = True
     semantic_dim: int = 8
     heads: int = 4
+    prior_temp: float = 0.05  # logits += -(energy - lowest energy) / prior_temp; 0: no energy prior
 
     def as_dict(self) -> dict:
         return asdict(self)
@@ -67,6 +75,8 @@ class Plan2PlaceNet(nn.Module):
         f = self.state(obs)
         c = self.cand(torch.from_numpy(obs.cands))
         logits = self.actor(torch.cat([f.expand(len(c), -1), c], 1)).squeeze(1)
+        if self.cfg.prior_temp > 0:  # a residual policy over the immediate-energy ranking (see features)
+            logits = logits - torch.from_numpy(obs.cands[:, ENERGY_GAP]) / self.cfg.prior_temp
         crit_in = f
         if self.cfg.sff:
             s = semantic if semantic is not None else torch.zeros(self.cfg.semantic_dim)
