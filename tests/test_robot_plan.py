@@ -203,3 +203,14 @@ def test_an_object_walled_off_from_the_robot_is_reported():
     assert any("no free floor reachable" in p and "FloorLamp" in p for p in plan.problems)
     check = check_plan(house, plan, LOOK)
     assert not check.ok and "FloorLamp" in check.failure and "on" in check.failure
+
+
+def test_execute_step_takes_the_plan_steps_json_form():
+    scene = kitchen(COOL)
+    house = to_house(scene)
+    plan = json.loads(json.dumps(robot_plan(scene, house).model_dump(mode="json")))  # as it crosses the wire
+    state = SymbolicState.from_house(json.loads(json.dumps(house)))
+    for step in plan["steps"]:
+        state, result = execute_step(state, step)
+        assert result.ok and result.index == step["index"], result.message
+    assert state.objects[plan["objects"]["target"]].cooled

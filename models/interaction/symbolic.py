@@ -209,7 +209,10 @@ def _apply_temperature(state: SymbolicState) -> None:
 
 
 def execute_step(state: SymbolicState, step: PlanStep | dict) -> tuple[SymbolicState, StepResult]:
-    """Run one action on a copy of the state: (new state, result). A refused action leaves the state as it was."""
+    """Run one action on a copy of the state: (new state, result). A refused action leaves the state as it was.
+    `step` is a PlanStep, its JSON form (a dict whose "action" is the action dict), or a bare action dict."""
+    if isinstance(step, dict) and isinstance(step.get("action"), dict):
+        step = PlanStep.model_validate(step)
     index = step.index if isinstance(step, PlanStep) else 0
     action = step.action if isinstance(step, PlanStep) else step
     name = str(action.get("action", ""))
