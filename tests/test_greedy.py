@@ -6,6 +6,7 @@ from models.datasets import load_dataset
 from models.energy.exact import layout_energy
 from models.metrics import scene_metrics
 from models.placement import PlacementProblem, get_solver
+from models.placement.greedy import Episode
 
 
 def _plans(n=3):
@@ -27,7 +28,6 @@ def test_greedy_places_everything_legally_and_reports_each_step():
 
 
 def test_greedy_step_is_the_lowest_immediate_energy():
-    from models.placement.greedy import Episode
     plan = _plans(1)[0]
     ep = Episode(plan)
     opts = ep.options()
@@ -49,3 +49,18 @@ def test_greedy_keeps_fixed_poses_and_its_energy_is_the_judges():
     kept = next(p for p in again.placements if p.id == moved.id)
     assert (kept.x, kept.z, kept.rotation) == pose
     assert layout_energy(plan, first.placements).total < layout_energy(plan, []).total  # placing beats leaving out
+
+
+def test_fast_hard_filter_is_candidate_scorers():
+    from models.placement.greedy import legal
+    for plan in _plans(4):
+        ep = Episode(plan)
+        rng = np.random.default_rng(1)
+        while not ep.done:
+            obj = ep.order[ep.i]
+            for strict in (True, False):
+                cands, scores, _ = ep.scorer.evaluate(obj, ep.placed, strict=strict)
+                _, ok = legal(ep.scorer, obj, ep.placed, strict=strict)
+                assert (ok == np.isfinite(scores)).all()
+            opts = ep.options()
+            ep.apply(opts, int(rng.integers(len(opts.feasible))) if len(opts.feasible) else None)

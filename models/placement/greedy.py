@@ -16,7 +16,8 @@ import numpy as np
 from models.energy.vectorised import CandidateEnergy
 from models.energy.weights import WEIGHTS
 from models.placement.base import Fixed, PlacementStep, StepObserver
-from models.placement.candidates import CandidateScorer, PlacedObject
+from models.geometry import SweptBoxes, boxes
+from models.placement.candidates import OVERLAP_TOL, CandidateScorer, PlacedObject, front_boxes
 from models.placement.problem import PlacementProblem
 from models.placement.result import make_layout
 from models.values import ConstraintPlan, Layout, PlanObject
@@ -33,6 +34,36 @@ class Options:
     feasible: np.ndarray  # (M,) indices into cands
     terms: dict[str, np.ndarray]  # each (M,): energy of placed + candidate, remaining objects pending
     soft: np.ndarray  # (M,) the constraint score of candidates.CandidateScorer
+
+
+def legal(scorer: CandidateScorer, obj: PlanObject, placed: list[PlacedObject], strict: bool = True
+          ) -> tuple[np.ndarray, np.ndarray]:
+    """(candidates, mask of those passing the hard filters): the same rules as `CandidateScorer.evaluate`
+    (tested), with a sweep-and-prune broad phase instead of an all-pairs overlap matrix."""
+    cands = scorer.candidates(obj)
+    ok = np.ones(len(cands), bool)
+    if not len(cands):
+        return cands, ok
+    x, z, rot = cands[:, 0], cands[:, 1], cands[:, 2]
+    body = SweptBoxes(boxes(x, z, obj.size.x, obj.size.z, rot))
+
+    def clear_of(swept: SweptBoxes, others) -> None:
+        for idx, area in swept.overlaps(np.asarray(others, float).reshape(-1, 4)):
+            ok[idx[area > OVERLAP_TOL]] = False
+
+    clear_of(body, [p.body for p in placed])
+    clear_of(body, scorer.door_zones)
+    if strict:
+        problem = scorer.problem
+        clearance = problem.clearance.get(obj.id, 0.0)
+        free = [p for p in placed if not problem.constraints.tied(obj.id, p.id)]
+        if clearance > 0:
+            front = front_boxes(x, z, rot, obj.size.x, obj.size.z, clearance)
+            ok &= (front[:, 0] >= -1e-6) & (front[:, 1] >= -1e-6) & \
+                (front[:, 2] <= scorer.width + 1e-6) & (front[:, 3] <= scorer.depth + 1e-6)
+            clear_of(SweptBoxes(front), [p.body for p in free])
+        clear_of(body, [p.front for p in free if p.front is not None])
+    return cands, ok
 
 
 class Episode:
@@ -64,11 +95,11 @@ class Episode:
             soft = np.zeros(1)
             feasible = np.array([0])
         else:
-            cands, scores, _ = self.scorer.evaluate(obj, self.placed, strict=True)
-            if not np.isfinite(scores).any():  # relax the front-clearance rules before giving up
-                cands, scores, _ = self.scorer.evaluate(obj, self.placed, strict=False)
-            feasible = np.flatnonzero(np.isfinite(scores))
-            soft = scores[feasible] if len(feasible) else np.zeros(0)
+            cands, ok = legal(self.scorer, obj, self.placed, strict=True)
+            if not ok.any():  # relax the front-clearance rules before giving up
+                cands, ok = legal(self.scorer, obj, self.placed, strict=False)
+            feasible = np.flatnonzero(ok)
+            soft = self.scorer.soft_scores(obj, cands[feasible], self.placed)[0] if len(feasible) else np.zeros(0)
         terms = self._energy.score(obj, cands[feasible]) if len(feasible) else {}
         return Options(obj, cands, feasible, terms, soft)
 
