@@ -12,6 +12,7 @@ from typing import Annotated
 from fastapi import FastAPI, HTTPException, Response
 from pydantic import AfterValidator, BaseModel, Field
 
+from app.bridge import bridge_for, mount
 from app.pipeline import Pipeline, dump
 from models.exports.glb import to_glb
 from models.exports.procthor_house import to_house
@@ -127,4 +128,5 @@ def create_app(store: Store, pipeline: Pipeline | None = None) -> FastAPI:
         except ValueError as e:
             raise HTTPException(409, str(e)) from e
 
+    mount(app, bridge_for(store))  # the headset websocket, pushes and the feedback export
     return app

@@ -51,7 +51,12 @@ def free_port(host: str, start: int, tries: int = 50) -> int:
 
 def serve_api(store: Store, pipeline: Pipeline, host: str, port: int) -> tuple[uvicorn.Server, int]:
     """Start the HTTP API in a background thread on `port` or the next free one; returns (server, port)."""
+    from app.bridge import HEADSET_PATH, bridge_for
+    from app.bridge.protocol import MAX_FRAME_BYTES
+
     port = free_port(host, port)
-    server = uvicorn.Server(uvicorn.Config(create_app(store, pipeline), host=host, port=port, log_level="warning"))
+    server = uvicorn.Server(uvicorn.Config(create_app(store, pipeline), host=host, port=port, log_level="warning",
+                                           ws_max_size=MAX_FRAME_BYTES))
+    bridge_for(store).address = f"ws://{host}:{port}{HEADSET_PATH}"
     threading.Thread(target=server.run, daemon=True).start()
     return server, port

@@ -22,6 +22,7 @@ SHORT = {"type": "string", "maxLength": 200}
 HANDS = ["left", "right"]
 FINGERS = ["thumb", "index", "middle", "ring", "little", "palm"]
 HAPTIC = ["hot", "cold", "light", "normal"]
+DEFS: dict[str, dict] = {}  # shared definitions of the embedded value types
 RGB = {"type": "array", "items": {"type": "number", "minimum": 0, "maximum": 1}, "minItems": 3, "maxItems": 3}
 
 
@@ -52,7 +53,10 @@ def bodies() -> dict[str, tuple[str, str, dict]]:
     from models.values.interaction import HapticProfile, RobotPlan, VRPoseChoice
 
     def schema_of(model) -> dict:
-        return model.model_json_schema(mode="serialization")
+        """The model's schema; its $defs move to the message's root, where its '#/$defs/...' refs point."""
+        schema = model.model_json_schema(mode="serialization")
+        DEFS.update(schema.pop("$defs", {}))
+        return schema
 
     scene_ref = obj({"push": {**ID, "description": "the id of the scene_push message this happened in"}})
     return {
@@ -135,9 +139,12 @@ def message_schema(kind: str, direction: str, doc: str, body: dict) -> dict:
     props = envelope_props()
     props["type"] = {"const": kind}
     props["body"] = body
-    return {"$schema": "https://json-schema.org/draft/2020-12/schema", "$id": f"{BASE_URI}{kind}.schema.json",
-            "title": kind, "description": f"{doc} Direction: {direction}.", "type": "object",
-            "properties": props, "required": list(props), "additionalProperties": False}
+    schema = {"$schema": "https://json-schema.org/draft/2020-12/schema", "$id": f"{BASE_URI}{kind}.schema.json",
+              "title": kind, "description": f"{doc} Direction: {direction}.", "type": "object",
+              "properties": props, "required": list(props), "additionalProperties": False}
+    if '"#/$defs/' in json.dumps(body):
+        schema["$defs"] = dict(sorted(DEFS.items()))
+    return schema
 
 
 def schemas() -> dict[str, dict]:
