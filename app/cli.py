@@ -156,11 +156,49 @@ def cmd_studio(args) -> int:
     print(f"H3DS Studio: http://{shown}:{studio.port}   (open it in a browser)")
     print(f"HTTP API:    http://{shown}:{api_port}/docs")
     print(f"Database:    {store.location}", flush=True)
+    if args.simulated_headset:
+        _start_simulated_headset(store, args.host, api_port)
     try:
         while True:
             time.sleep(3600)
     except KeyboardInterrupt:
         studio.stop()
+    return 0
+
+
+def _start_simulated_headset(store, host: str, api_port: int) -> None:
+    """The headset simulator (a stand-in for the Quest app) as its own process, paired with the studio's
+    current token over the wire protocol, as a real headset would be."""
+    import subprocess
+    import sys
+
+    from app.bridge import HEADSET_PATH, bridge_for
+    sim = Path(__file__).resolve().parents[1] / "unity-bridge" / "simulator" / "headset_sim.py"
+    url = f"ws://{'127.0.0.1' if host == '0.0.0.0' else host}:{api_port}{HEADSET_PATH}"
+    subprocess.Popen([sys.executable, str(sim), url, "--token", bridge_for(store).token])
+    print("Headset:     the headset SIMULATOR (stand-in) is pairing; press 'Send to headset' in the Headset tab",
+          flush=True)
+
+
+def cmd_feedback_export(args) -> int:
+    from app.bridge.export import jsonl
+    from studio_db import Store
+    from studio_db.feedback import FeedbackStore
+
+    feedback = FeedbackStore(Store())
+    try:
+        lines = jsonl(feedback, args.since, args.until, args.scene, args.session)
+        out = open(args.out, "w", encoding="utf-8") if args.out else sys.stdout
+        count = 0
+        for line in lines:
+            out.write(line)
+            count += 1
+    except ValueError as e:
+        print(f"error: {e}", file=sys.stderr)
+        return 2
+    if args.out:
+        out.close()
+        print(f"{count} feedback records -> {args.out}", file=sys.stderr)
     return 0
 
 
@@ -244,7 +282,20 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--host", default="127.0.0.1", help="address to listen on (0.0.0.0 for other machines)")
     p.add_argument("--port", type=int, default=8080, help="studio port; if busy, the next free one is used")
     p.add_argument("--api-port", type=int, default=None, help="HTTP API port (default: studio port + 1)")
+    p.add_argument("--simulated-headset", action="store_true",
+                   help="also start the headset simulator (a stand-in for the Quest app) and pair it")
     p.set_defaults(run=cmd_studio)
+
+    p = sub.add_parser("feedback", help="glove feedback from headsets: export for retraining")
+    fb = p.add_subparsers(dest="feedback_command", required=True)
+    e = fb.add_parser("export", help="one JSON record per glove event, joined with its scene version and task graph")
+    e.add_argument("--format", choices=["jsonl"], default="jsonl")
+    e.add_argument("--since", default=None, help="received at or after this ISO time (UTC if no zone)")
+    e.add_argument("--until", default=None, help="received before this ISO time")
+    e.add_argument("--scene", type=int, default=None, help="only this stored scene id")
+    e.add_argument("--session", default=None, help="only this headset session")
+    e.add_argument("--out", default=None, help="file to write (default: stdout)")
+    e.set_defaults(run=cmd_feedback_export)
 
     p = sub.add_parser("demo", help="generate the demo scene (what `make run` does until the studio lands)")
     p.add_argument("--out", default="out/demo", metavar="DIR")
@@ -252,7 +303,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     p = sub.add_parser("bench", help="benchmarks that print figures: parser, generate, placement, energy")
     p.add_argument("what", choices=["parser", "generate", "placement", "energy", "studio", "language", "vrpose",
-                                          "plan2place"])
+                                          "plan2place", "bridge"])
     p.add_argument("--n", type=int, default=30, help="instructions (generate) or plans (placement) to run")
     p.add_argument("--split", default="valid_unseen", help="ALFRED split to score (parser)")
     p.add_argument("--dataset", default="seen", choices=["seen", "unseen_a", "unseen_b", "dense", "human"],

@@ -195,8 +195,8 @@ class StudioSession:
                              "stored yet), named `<scene>-v<n>-house.json` and `<scene>-v<n>.glb`.")
 
         with tabs.add_tab("Headset"):
-            gui.add_button("Send to headset", disabled=True, hint="arrives with the headset bridge")
-            gui.add_markdown("Live glove feedback will stream here once the headset bridge lands.")
+            from frontend.headset_panel import HeadsetPanel
+            self.headset_panel = HeadsetPanel(self, gui)
         self.list_scenes()
 
     def say(self, text: str) -> None:

@@ -20,6 +20,8 @@ def run_benchmark(what: str, args) -> int:
         from app.bench.language import main
     elif what == "vrpose":
         from app.bench.vrpose import main
+    elif what == "bridge":
+        from app.bench.bridge import main
     else:
         raise ValueError(f"unknown benchmark {what!r}")
     return main(args)
