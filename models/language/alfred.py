@@ -55,20 +55,84 @@ class Annotation:
         return out
 
 
-    def task_graph(self) -> TaskGraph:
-        """The ground-truth task graph of interfaces.md: the target is key, the receptacle or lamp is the
-        anchor (and key, as ALFRED annotators name it), the fridge, microwave and knife are inferred."""
+    def task_graph(self, named: frozenset[str] | None = None) -> TaskGraph:
+        """The task graph of interfaces.md for this annotation.
+
+        With `named` (the types the instruction names, see `named_types`) the roles follow the label
+        rules exactly: key = named, inference = required but not named, anchor = the final receptacle or
+        the lamp. Without it (the planners' datasets) the target and the receptacle or lamp count as
+        named and the fridge, microwave and knife as inferred, which is what annotators usually write.
+        """
         roles: dict[str, list[str]] = {}
         for obj, rel, other in sorted(self.label_triplets(), key=lambda t: RELATION_ORDER.index(t[1])):
-            roles.setdefault(obj, ["key"])
-            roles.setdefault(other, ["key", "anchor"] if rel in ("placed_at", "examined_under") else ["inference"])
+            anchor = rel in ("placed_at", "examined_under")
+            if named is None:
+                roles.setdefault(obj, ["key"])
+                roles.setdefault(other, ["key", "anchor"] if anchor else ["inference"])
+                continue
+            for t, is_anchor in ((obj, False), (other, anchor)):
+                found = roles.setdefault(t, [])
+                said = "key" if _is_named(t, named) else "inference"
+                found.extend(r for r in (said, "anchor" if is_anchor else None) if r and r not in found)
+        if named is not None:
+            roles = {t: sorted(r, key=ROLE_ORDER.index) for t, r in roles.items()}
         return TaskGraph(instruction=self.instruction, room_type=self.room_type, task_type=self.task_type,
                          objects=[TaskObject(type=t, roles=r) for t, r in roles.items()],
                          relations=sorted(self.label_triplets(), key=lambda t: RELATION_ORDER.index(t[1])),
                          sliced=self.sliced, provenance=Provenance(stage="task_graph", method="alfred-labels"))
 
 
+    def label_graph(self) -> TaskGraph:
+        """The labelled task graph: roles by what this instruction actually names."""
+        return self.task_graph(named_types(self.instruction))
+
+
 RELATION_ORDER = ("sliced_with", "cooled_in", "heated_in", "placed_at", "examined_under")
+ROLE_ORDER = ("key", "anchor", "inference")
+# A butter knife named for "sliced with Knife" still names the knife the task needs.
+NAMED_ALIASES = {"Knife": ("Knife", "ButterKnife")}
+# Common words one letter away from an object name ("place" / "plate"); never read as misspellings.
+NOT_MISSPELLINGS = frozenset({"place", "placed", "places", "plates", "table", "tables", "class", "glass",
+                              "apply", "bread", "break", "cable", "pants", "paint", "stand", "stove", "store",
+                              "shelf", "shell", "spoon", "sponge", "watch", "match", "water", "later", "cards",
+                              "lamps", "large", "light", "right", "night", "sight", "tight", "eight", "front",
+                              "remove", "removed", "bowls"})
+MIN_FUZZY_CHARS = 5
+
+
+def _is_named(type_name: str, named: frozenset[str]) -> bool:
+    return any(t in named for t in NAMED_ALIASES.get(type_name, (type_name,)))
+
+
+def _deletes(word: str) -> set[str]:
+    return {word} | {word[:i] + word[i + 1:] for i in range(len(word))}
+
+
+@cache
+def _fuzzy_index() -> dict[str, frozenset[str]]:
+    """one-deletion variant of every one-word object name of >= 5 letters -> the types it names."""
+    from models.world import catalogue
+    index: dict[str, set[str]] = {}
+    for phrase, types in catalogue().lexicon.items():
+        if " " not in phrase and len(phrase) >= MIN_FUZZY_CHARS:
+            for d in _deletes(phrase):
+                index.setdefault(d, set()).update(types)
+    return {k: frozenset(v) for k, v in index.items()}
+
+
+def named_types(text: str) -> frozenset[str]:
+    """The AI2-THOR types an instruction names: every candidate of every lexicon phrase found by the rule
+    parser's longest match (plurals folded; "lamp" names both lamps), plus one-edit misspellings of
+    one-word names of five letters or more ("refrigerater", "tomatoe", "micowave")."""
+    from models.language.rule_parser import RuleParser, words_of
+    words = words_of(text)
+    named = {t for m in RuleParser.shared().mentions(words) for t in m.types}
+    index = _fuzzy_index()
+    for w in words:
+        if len(w) >= MIN_FUZZY_CHARS and w not in NOT_MISSPELLINGS and w not in RuleParser.shared().lexicon:
+            for d in _deletes(w):
+                named.update(index.get(d, ()))
+    return frozenset(named)
 
 
 @cache

@@ -14,6 +14,7 @@ from __future__ import annotations
 import math
 import re
 from dataclasses import dataclass
+from functools import cache
 
 from models.language.base import InstructionError, check_instruction
 from models.values import Provenance, TaskGraph, TaskObject
@@ -46,6 +47,11 @@ class Mention:
     before: tuple[str, ...]  # up to three words before the mention, nearest last
 
 
+def words_of(text: str) -> list[str]:
+    """Lower-case word tokens, possessive 's dropped: what the lexicon is matched against."""
+    return re.findall(r"[a-z0-9]+", text.lower().replace("'s", ""))
+
+
 def _singulars(phrase: str) -> list[str]:
     out = [phrase]
     if phrase.endswith("ies"):
@@ -66,6 +72,12 @@ class RuleParser:
         self.cat = cat or catalogue()
         self.lexicon = self.cat.lexicon
         self.valid_parents = load_json("alfred_constants.json")["VAL_RECEPTACLE_OBJECTS"]
+
+    @classmethod
+    @cache
+    def shared(cls) -> RuleParser:
+        """One parser over the default catalogue, built once per process."""
+        return cls()
 
     # ---- reading ---------------------------------------------------------------------------------
 
@@ -109,7 +121,7 @@ class RuleParser:
     def parse(self, instruction: str, room_type: str | None = None) -> TaskGraph:
         text = check_instruction(instruction)
         room = normalise_room_type(room_type) if room_type else None
-        words = re.findall(r"[a-z0-9]+", text.lower().replace("'s", ""))
+        words = words_of(text)
         mentions = self.mentions(words)
         wordset = set(words)
         hint = room or self.infer_room_type([m.types[0] for m in mentions if len(m.types) == 1])
