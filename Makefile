@@ -5,6 +5,7 @@ VENV     := .venv
 BIN      := $(VENV)/bin
 STAMP    := $(VENV)/.installed
 CHROMIUM := /usr/bin/chromium
+MCS      := /usr/bin/mcs
 
 .PHONY: run test bench clean-venv
 
@@ -27,10 +28,18 @@ $(CHROMIUM):
 		echo "chromium is missing: run 'sudo apt-get install chromium' once"; exit 1; \
 	fi
 
+# The Unity package is compile-checked with Debian's mono-mcs (C# 7.2) and its protocol layer run under mono.
+$(MCS):
+	@if [ "$$(id -u)" = 0 ]; then \
+		apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq mono-mcs mono-runtime; \
+	else \
+		echo "mcs is missing: run 'sudo apt-get install mono-mcs mono-runtime' once"; exit 1; \
+	fi
+
 run: $(STAMP)
 	$(BIN)/h3ds studio
 
-test: $(STAMP) $(CHROMIUM)
+test: $(STAMP) $(CHROMIUM) $(MCS)
 	$(BIN)/python -m pytest
 
 bench: $(STAMP) $(CHROMIUM)
