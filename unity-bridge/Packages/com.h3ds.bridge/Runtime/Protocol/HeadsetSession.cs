@@ -54,11 +54,12 @@ namespace H3ds.Bridge.Protocol
             if (State == SessionState.Refused || State == SessionState.Idle) { State = SessionState.Idle; _retryAt = 0; }
         }
 
-        /// <summary>Queues a message; ones the studio acks are kept (and resent) until acked.</summary>
+        /// <summary>Sends a message once paired; ones the studio acks are kept (and resent) until acked,
+        /// others (a ping) are not sent while unpaired, since the studio refuses anything before pairing.</summary>
         public Envelope Send(IBody body)
         {
             var env = _outbox.Next(body);
-            if (State == SessionState.Paired || !Outbox.NeedsAck(env.Type)) Write(env);
+            if (State == SessionState.Paired) Write(env);
             return env;
         }
 
