@@ -11,7 +11,7 @@ import threading
 from datetime import datetime, timezone
 from typing import Iterator
 
-from sqlalchemy import UniqueConstraint
+from sqlalchemy import UniqueConstraint, insert
 from sqlmodel import Field, Session, SQLModel, select
 
 from studio_db.store import NotFound, Store
@@ -86,7 +86,7 @@ class FeedbackStore:
             seqs = [m["seq"] for m in messages]
             seen = set(s.exec(select(FeedbackRow.seq).where(FeedbackRow.session == session,
                                                             FeedbackRow.seq.in_(seqs))).all())
-            fresh = []
+            fresh, rows = [], []
             for m in messages:
                 new = m["seq"] not in seen
                 fresh.append(new)
@@ -94,11 +94,14 @@ class FeedbackStore:
                     continue
                 seen.add(m["seq"])
                 b = m["body"]
-                s.add(FeedbackRow(session=session, seq=m["seq"], message_id=m["id"], push_id=b["push"],
-                                  sent_at=datetime.fromtimestamp(m["ts"], timezone.utc), t=b["t"],
-                                  object_id=b["object_id"], object_type=b["object_type"], kind=b["kind"],
-                                  hand=b["hand"], fingers=json.dumps(b["fingers"]), haptic_class=b["haptic_class"],
-                                  intensity=b["intensity"], glove_colour=json.dumps(b["glove_colour"])))
+                rows.append({"session": session, "seq": m["seq"], "message_id": m["id"], "push_id": b["push"],
+                             "sent_at": datetime.fromtimestamp(m["ts"], timezone.utc), "received_at": now(),
+                             "t": b["t"], "object_id": b["object_id"], "object_type": b["object_type"],
+                             "kind": b["kind"], "hand": b["hand"], "fingers": json.dumps(b["fingers"]),
+                             "haptic_class": b["haptic_class"], "intensity": b["intensity"],
+                             "glove_colour": json.dumps(b["glove_colour"])})
+            if rows:  # one executemany: the ORM's per-object bookkeeping costs more than the write
+                s.execute(insert(FeedbackRow.__table__), rows)
             return fresh
 
     def count(self, session: str | None = None) -> int:

