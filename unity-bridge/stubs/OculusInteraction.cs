@@ -61,8 +61,18 @@ namespace Oculus.Interaction
     }
 }
 
+namespace Oculus.Interaction.Grab
+{
+    [System.Flags]
+    public enum GrabTypeFlags { None = 0, Pinch = 1 << 0, Palm = 1 << 1, All = Pinch | Palm }
+
+    [System.Serializable]
+    public struct GrabbingRule { }
+}
+
 namespace Oculus.Interaction.HandGrab
 {
+    using Oculus.Interaction.Grab;
     using Oculus.Interaction.Input;
 
     public class HandGrabInteractable : MonoBehaviour, IInteractableView
@@ -73,7 +83,11 @@ namespace Oculus.Interaction.HandGrab
         public IEnumerable<IInteractorView> InteractorViews { get { yield break; } }
         public int SelectingInteractorViewsCount { get { return 0; } }
         public IEnumerable<IInteractorView> SelectingInteractorViews { get { yield break; } }
-        public void InjectAllHandGrabInteractable(Rigidbody rigidbody) { }
+        // The InjectAll... overload differs between SDK versions (argument order, GrabbingRule); the bridge
+        // calls InjectRigidbody, present in all of them; the grab types and rules keep their field defaults.
+        public void InjectAllHandGrabInteractable(GrabTypeFlags supportedGrabTypes, Rigidbody rigidbody,
+            GrabbingRule pinchGrabRules, GrabbingRule palmGrabRules) { }
+        public void InjectRigidbody(Rigidbody rigidbody) { }
         public void InjectOptionalPointableElement(Grabbable pointableElement) { }
     }
 

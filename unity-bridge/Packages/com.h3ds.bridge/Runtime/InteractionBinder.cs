@@ -1,7 +1,8 @@
 // Makes the objects AI2-THOR spawned touchable with the Meta XR Interaction SDK at run time and turns
 // their events into glove events. Per object: a HandGrabInteractable (on the object's Rigidbody) and an
 // InteractableUnityEventWrapper, added while the object is inactive and injected before it wakes, so
-// their Awake/Start see the injected references. The wrapper's events carry no arguments: the hand and
+// their Awake/Start see the injected references. This is for touch events: to let the person move the
+// object too, add a Grabbable and inject it as the interactable's pointable element. The wrapper's events carry no arguments: the hand and
 // fingers are read from the interactable's (selecting) interactor views.
 using System;
 using System.Collections.Generic;
@@ -34,7 +35,7 @@ namespace H3ds.Bridge
                 if (body == null) continue;  // fixed parts of the house (walls, counters built in) are not grabbed
                 go.SetActive(false);
                 var interactable = go.AddComponent<HandGrabInteractable>();
-                interactable.InjectAllHandGrabInteractable(body);
+                interactable.InjectRigidbody(body);  // grab types and rules keep their defaults
                 var wrapper = go.AddComponent<InteractableUnityEventWrapper>();
                 wrapper.InjectAllInteractableUnityEventWrapper(interactable);
                 go.SetActive(true);
