@@ -7,7 +7,7 @@ STAMP    := $(VENV)/.installed
 CHROMIUM := /usr/bin/chromium
 MCS      := /usr/bin/mcs
 
-.PHONY: run test bench clean-venv
+.PHONY: run demo-headset test bench clean-venv
 
 $(BIN)/python:
 	$(PY) -m venv $(VENV)
@@ -38,6 +38,10 @@ $(MCS):
 
 run: $(STAMP)
 	$(BIN)/h3ds studio
+
+# The studio with the headset simulator (a stand-in for the Quest app) paired over the wire protocol.
+demo-headset: $(STAMP)
+	$(BIN)/h3ds studio --simulated-headset
 
 test: $(STAMP) $(CHROMIUM) $(MCS)
 	$(BIN)/python -m pytest
