@@ -222,3 +222,13 @@ def test_pairs_with_the_studio_survives_a_drop_and_every_event_is_stored_once(bu
     assert {r["kind"] for r in records} == {"hover", "select", "unselect", "unhover"}
     progress = bridge.progress[summary["push"]]
     assert progress.delivered and progress.loaded and progress.step == progress.steps > 0
+
+
+def test_a_wrong_token_is_refused_and_named(built, studio):
+    bridge, _, url = studio
+    wrong = f"{(int(bridge.token) + 1) % 10**6:06d}"
+    r = check(built, "session", url, wrong, str(uuid.uuid4()), "10", "5", timeout=60)
+    summary = json.loads(r.stdout.splitlines()[-1])
+    assert r.returncode == 1 and summary["state"] == "Refused" and summary["paired"] == 0
+    assert summary["error"].startswith("wrong_token")
+    assert not bridge.paired()

@@ -151,12 +151,13 @@ static class ProtocolCheck
             Thread.Sleep(1);
         }
         int pending = session.Outbox.Pending;
+        var state = session.State;
         session.End("protocol check done");
         Console.WriteLine(Json.Write(new Dictionary<string, object>
         {
             { "paired", (long)driver.Paired }, { "disconnects", (long)driver.Disconnects }, { "push", driver.Push == null ? null : driver.Push.Push },
             { "events_sent", (long)sent }, { "pending", (long)pending }, { "dropped_from_buffer", session.Outbox.Dropped },
-            { "error", driver.Error }, { "last_problem", session.LastProblem }, { "state", session.State.ToString() },
+            { "error", driver.Error }, { "last_problem", session.LastProblem }, { "state", state.ToString() },
         }));
         return pending == 0 && driver.Push != null ? 0 : 1;
     }
