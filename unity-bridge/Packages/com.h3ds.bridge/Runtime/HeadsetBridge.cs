@@ -87,7 +87,7 @@ namespace H3ds.Bridge
             _scene = push;
             _objects.Clear();
             if (interactions != null) interactions.Clear();
-            string problem = CheckHouse(push);
+            string problem = _thor == null ? "the headset app is not wired to AI2-THOR (HeadsetBridge.thorAgent)" : CheckHouse(push);
             if (problem != null) { _session.Send(new SceneFailed { Push = push.Push, Reason = problem }); yield break; }
 
             var watch = Stopwatch.StartNew();

@@ -174,6 +174,8 @@ namespace H3ds.Bridge.Protocol
                         State = SessionState.Refused;
                         _resumeKey = null;
                         LastProblem = error.Code + ": " + error.Message;
+                        _link.Dispose();  // the studio closes it too
+                        _link = null;
                     }
                     _handler.OnStudioError(error);
                     break;
