@@ -242,13 +242,35 @@ class HeadsetSimulator:
             "intensity": int(intensity), "glove_colour": [float(c) for c in colour]})
 
 
+async def _next_push(sim: HeadsetSimulator, retries: int = 5) -> dict | None:
+    """The next scene push; after a drop, reconnect (resume key) up to `retries` times, else None."""
+    while True:
+        waiting = asyncio.ensure_future(sim.pushes.get())
+        await asyncio.wait([waiting, sim._reader], return_when=asyncio.FIRST_COMPLETED)
+        if waiting.done():
+            return waiting.result()
+        waiting.cancel()
+        for _ in range(retries):
+            await asyncio.sleep(1.0)
+            try:
+                await sim.connect()
+                break
+            except (OSError, Refused):
+                continue
+        else:
+            return None
+
+
 async def _main(args) -> int:
     sim = HeadsetSimulator(args.url, args.token, seed=args.seed)
     paired = await sim.connect()
     print(f"[stand-in headset] paired as {paired['headset_id']} (session {sim.session}); waiting for scenes",
           flush=True)
     while True:
-        push = await sim.pushes.get()
+        push = await _next_push(sim)
+        if push is None:
+            print("[stand-in headset] the studio is gone; exiting", flush=True)
+            return 1
         print(f"[stand-in headset] scene {push['scene_id']} v{push['version']}: {len(push['robot_plan']['steps'])} "
               f"robot steps", flush=True)
         counts = await sim.run_scene(push, pace_s=args.pace)
