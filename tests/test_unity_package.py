@@ -219,6 +219,8 @@ def test_pairs_with_the_studio_survives_a_drop_and_every_event_is_stored_once(bu
     assert summary["events_sent"] == events and summary["pending"] == 0 and summary["error"] is None
     records = list(bridge.feedback.records(session=session))
     assert len(records) == events == len({r["seq"] for r in records})
+    print(f"C# client: {events} glove events stored and acked in {summary['seconds_to_all_acked']:.2f} s, one drop "
+          f"and reconnect included ({events / summary['seconds_to_all_acked']:.0f} events/s)")
     assert {r["kind"] for r in records} == {"hover", "select", "unselect", "unhover"}
     progress = bridge.progress[summary["push"]]
     assert progress.delivered and progress.loaded and progress.step == progress.steps > 0

@@ -131,12 +131,14 @@ static class ProtocolCheck
         var deadline = DateTime.UtcNow.AddSeconds(60);
         int sent = 0;
         bool dropped = false;
+        var watch = new System.Diagnostics.Stopwatch();
         string[] kinds = { "hover", "select", "unselect", "unhover" };
         while (DateTime.UtcNow < deadline && session.State != SessionState.Refused)
         {
             session.Poll();
             if (driver.Push != null && sent < events)
             {
+                if (!watch.IsRunning) watch.Start();
                 var ids = new List<string>(driver.Push.HapticProfiles.Keys);
                 for (int k = 0; k < 50 && sent < events; k++, sent++)
                 {
@@ -157,7 +159,7 @@ static class ProtocolCheck
         {
             { "paired", (long)driver.Paired }, { "disconnects", (long)driver.Disconnects }, { "push", driver.Push == null ? null : driver.Push.Push },
             { "events_sent", (long)sent }, { "pending", (long)pending }, { "dropped_from_buffer", session.Outbox.Dropped },
-            { "error", driver.Error }, { "last_problem", session.LastProblem }, { "state", state.ToString() },
+            { "error", driver.Error }, { "seconds_to_all_acked", watch.Elapsed.TotalSeconds }, { "last_problem", session.LastProblem }, { "state", state.ToString() },
         }));
         return pending == 0 && driver.Push != null ? 0 : 1;
     }
