@@ -74,6 +74,7 @@ class HeadsetPanel:
                 panel._on(kind, payload)
 
         unsubscribe = self.bridge.subscribe(listener)
+        self.unsubscribe = unsubscribe
         threading.Thread(target=_render_loop, args=(me,), daemon=True).start()
         self._render_pairing()
 
@@ -96,6 +97,13 @@ class HeadsetPanel:
         options = tuple(f"{h.headset_id} · {h.device[:40]} · {'connected' if h.connected else 'offline'} · "
                         f"{h.session}" for h in self.bridge.paired())
         self.headset.options = options or ("-",)
+
+    def closed(self) -> bool:
+        """The browser tab is gone (viser's buffer for it is done; there is no public flag)."""
+        try:
+            return self.session.client._websock_connection.get_message_buffer().done
+        except AttributeError:
+            return False
 
     def render(self) -> None:
         with self._lock:
@@ -125,6 +133,9 @@ class HeadsetPanel:
 def _render_loop(ref: "weakref.ref[HeadsetPanel]") -> None:
     ticks = 0
     while (panel := ref()) is not None:
+        if panel.closed():
+            panel.unsubscribe()
+            return
         try:
             panel.render()
             ticks += 1
