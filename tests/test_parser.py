@@ -56,3 +56,32 @@ def test_rule_parser_quality_on_alfred_valid_unseen(parser):
     result = score(parser, load_annotations("valid_unseen"))
     assert result["n"] == 518
     assert result["object_f1"] > 0.88 and result["triplet_recall"] > 0.8 and result["task_type_accuracy"] > 0.9
+
+
+@pytest.mark.parametrize("text,flag", [
+    ("Put the apple in the fridge and put the mug on the table", "several tasks"),
+    ("Put the apple on the spaceship", "'spaceship' is not an object"),
+    ("Pon la apple en la mesa", "does not look like English"),
+])
+def test_hard_input_is_flagged_uncertain_with_a_message(parser, text, flag):
+    graph = parser.parse(text)
+    assert graph.uncertain and any(flag in m for m in graph.messages)
+    assert all(o.type in parser.cat for o in graph.objects)  # never an invented type
+
+
+@pytest.mark.parametrize("text,message", [
+    ("Mets la pomme dans le frigo", "does not look like English"),
+    ("りんごを冷蔵庫に入れて", "does not look like English"),
+    ("Put the zebra on the table", "no object to pick up"),
+    ("put the apple on the table " * 400, "characters long"),
+])
+def test_hard_input_without_a_reading_is_a_clear_error(parser, text, message):
+    with pytest.raises(InstructionError, match=message):
+        parser.parse(text)
+
+
+def test_ordinary_instructions_are_not_flagged(parser):
+    for text in ("Put a chilled bread on the counter", "Slice a potato with a knife in order to throw it away",
+                 "Pick up the knife, slice the apple and put it in the fridge", "Throw away the apple"):
+        graph = parser.parse(text)
+        assert not graph.uncertain and not graph.messages, text

@@ -36,7 +36,18 @@ DESTINATION_WORDS = {"in", "into", "on", "onto", "inside", "at", "to", "atop", "
 LANDMARK_WORDS = {"by", "near", "beside", "next", "above", "below", "under", "left", "right", "behind", "between",
                   "across", "underneath", "beneath", "front", "of"}
 LAMPS = ("DeskLamp", "FloorLamp")
+DETERMINERS = {"the", "a", "an", "my", "your", "this", "that", "some", "one"}
+STOPWORDS_AFTER = {"the", "a", "an", "it", "its", "my", "your", "this", "that", "some", "one", "top", "of", "front",
+                   "inside", "away", "back", "there", "here", "place", "position"}
 MAX_PHRASE_WORDS = 4
+# Common English words of household instructions: a text of several words with none of them (or mostly
+# non-ASCII letters) is taken to be in another language.
+ENGLISH_WORDS = {"the", "a", "an", "on", "in", "into", "to", "and", "of", "it", "then", "put", "place", "take",
+                 "pick", "up", "move", "with", "from", "is", "that", "this", "please", "get", "go", "turn", "set",
+                 "bring", "carry", "under", "by", "for", "at", "its", "your", "you", "me", "some", "grab", "look"}
+TASK_VERBS = {"put", "place", "set", "move", "bring", "carry", "take", "grab", "leave", "drop", "throw", "toss",
+              "examine", "inspect", "look", "chill", "cool", "heat", "warm", "cook", "microwave", "slice", "cut"}
+CLAUSE_BREAKS = re.compile(r"[.;!?]|\b(?:and then|then|also|after that|afterwards|and)\b")
 
 
 @dataclass(frozen=True)
@@ -135,7 +146,10 @@ class RuleParser:
         lamp_mentioned = any(set(m.types) & set(LAMPS) for m in mentions)
         if not targets and lamp_mentioned:
             return self._lamp_only(text, room, mentions)
+        foreign = self._not_english(text, words)
         if not targets:
+            if foreign:
+                raise InstructionError(f"{foreign}; no object to pick up was recognised: {text[:80]!r}")
             raise InstructionError("no object to pick up was recognised in the instruction "
                                    f"(known words include: apple, mug, book, remote...): {text[:80]!r}")
         target_m = targets[0]
@@ -178,13 +192,58 @@ class RuleParser:
 
         if room is None:
             room = self.infer_room_type(list(objects))
+        messages = [m for m in (foreign, self._several_tasks(text, target), self._unknown_destination(
+            words, mentions, objects, target)) if m]
         order = ("key", "anchor", "inference")
         return TaskGraph(
             instruction=text, room_type=room, task_type=task_type, sliced=sliced,
+            uncertain=bool(messages), messages=messages,
             objects=[TaskObject(type=t, roles=sorted(r, key=order.index)) for t, r in objects.items()],
             relations=relations,
             provenance=Provenance(stage="task_graph", method=self.name),
         )
+
+    # ---- doubts: hard input flagged `uncertain` with a message a designer can act on -------------------
+
+    @staticmethod
+    def _not_english(text: str, words: list[str]) -> str | None:
+        letters = [ch for ch in text if ch.isalpha()]
+        foreign = sum(not ch.isascii() for ch in letters) > 0.3 * len(letters)
+        if foreign or (len(words) >= 3 and not set(words) & ENGLISH_WORDS):
+            return "the instruction does not look like English; only English instructions are understood"
+        return None
+
+    def _several_tasks(self, text: str, target: str) -> str | None:
+        """Two or more clauses, each with a task verb and its own pickupable object."""
+        found: list[str] = []
+        for clause in CLAUSE_BREAKS.split(text.lower()):
+            words = words_of(clause or "")
+            if not set(words) & TASK_VERBS:
+                continue
+            objs = [t for m in self.mentions(words) for t in m.types[:1] if self._pickupable(t)
+                    and t not in ("Knife", "ButterKnife") and not set(m.before[-1:]) & SOURCE_WORDS]
+            if objs and objs[0] not in found:
+                found.append(objs[0])
+        if len(found) > 1:
+            return (f"the instruction seems to ask for several tasks (with {', '.join(found)}); only the one with "
+                    f"{target} was read as the task - give one task per instruction")
+        return None
+
+    def _unknown_destination(self, words: list[str], mentions: list[Mention], objects: dict, target: str) -> str | None:
+        """"Put the apple on the spaceship": the destination word is unknown, so a usual place was assumed."""
+        assumed = [t for t, roles in objects.items() if {"anchor", "inference"} <= roles]
+        if not assumed:
+            return None
+        covered = {i for m in mentions for i in range(m.start, m.end)}
+        for i, w in enumerate(words[:-1]):
+            if w in DESTINATION_WORDS - {"to"} or (w == "to" and i > 0):
+                if words[i + 1] not in DETERMINERS:
+                    continue
+                rest = [j for j in range(i + 1, min(i + 4, len(words))) if words[j] not in STOPWORDS_AFTER]
+                if rest and not covered & set(rest) and words[rest[0]].isalpha():
+                    return (f"{words[rest[0]]!r} is not an object the catalogue knows; {target} goes to "
+                            f"{assumed[0]}, its usual place - name a known receptacle to change it")
+        return None
 
     def _resolve(self, m: Mention, room: str) -> Mention:
         """An ambiguous word ("table", "lamp", "bottle") means the candidate most common in the room."""
