@@ -253,3 +253,22 @@ def test_a_flood_is_stored_once_and_the_server_still_answers(server):
     sim = run(go())
     assert server.bridge.feedback.count(sim.session) == n
     assert stored_seqs(server, sim.session) == list(range(1, n + 1))
+
+
+def test_a_frame_over_the_websocket_limit_closes_only_that_connection(server):
+    async def go():
+        sim, push = await paired_with_scene(server)
+        await sim.glove_event(push["push"], 0.0, "Bread|1", "Bread", "hover", "left", [], "normal", 0, [0, 0, 0])
+        assert await sim.wait_acked(10)
+        ws = sim.ws
+        await ws.send("x" * (MAX_FRAME_BYTES + 1))
+        await asyncio.wait_for(sim._reader, 10)  # the reader ends when the studio closes the socket
+        assert ws.close_code == 1009  # message too big
+        await sim.connect()  # the server lives on: the same session resumes
+        await sim.glove_event(push["push"], 1.0, "Bread|1", "Bread", "unhover", "left", [], "normal", 0, [0, 0, 0])
+        assert await sim.wait_acked(10)
+        await sim.close()
+        return sim
+
+    sim = run(go())
+    assert stored_seqs(server, sim.session) == [1, 2]
