@@ -1,6 +1,7 @@
 """`h3ds feedback export`: filters, a clear error for a bad time, and records the `datasets` JSON loader reads."""
 
 import json
+import os
 
 import pytest
 
@@ -45,3 +46,25 @@ def test_export_filters_and_datasets_loads_it(stored, tmp_path, capsys):
     import datasets
     ds = datasets.load_dataset("json", data_files=str(out), split="train", cache_dir=str(tmp_path / "hf"))
     assert ds.num_rows == 10 and ds[0]["fingers"] == ["thumb", "index"] and ds[0]["glove_colour"][2] == 1.0
+
+
+POSTGRES = os.environ.get("H3DS_TEST_POSTGRES_URL")
+
+
+@pytest.mark.skipif(not POSTGRES, reason="no PostgreSQL server: .ci/run starts one and sets H3DS_TEST_POSTGRES_URL")
+def test_feedback_dedup_and_export_on_postgresql(pipeline):
+    import uuid
+    store = Store(POSTGRES)
+    scene = pipeline.generate("Put a chilled bread on the counter", "kitchen", seed=0).scene
+    sid, _ = store.create_scene("bread on postgres", scene, 0, "dfs")
+    fb = FeedbackStore(store)
+    session = uuid.uuid4().hex
+    fb.add_push(f"push-{session}", session, "headset-1", "stand-in", sid, 1)
+    events = [{"id": f"m{i}", "seq": i, "ts": 1.7e9 + i, "body": {
+        "push": f"push-{session}", "t": 0.5, "object_id": "Bread|1", "object_type": "Bread", "kind": "hover",
+        "hand": "right", "fingers": ["index"], "haptic_class": "normal", "intensity": 30,
+        "glove_colour": [0.0, 0.0, 0.0]}} for i in range(1, 4)]
+    assert fb.add_events(session, events) == [True] * 3
+    assert fb.add_events(session, events + events[:1]) == [False] * 4
+    rows = list(FeedbackStore(Store(POSTGRES)).records(session=session))
+    assert [r["seq"] for r in rows] == [1, 2, 3] and rows[0]["scene_id"] == sid
