@@ -52,6 +52,7 @@ bench: $(STAMP) $(CHROMIUM)
 	$(BIN)/h3ds bench energy
 	$(BIN)/h3ds bench studio
 	$(BIN)/h3ds bench placement --dataset seen
+	$(BIN)/h3ds bench bridge
 
 clean-venv:
 	rm -rf $(VENV)
