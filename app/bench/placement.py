@@ -176,3 +176,18 @@ def main(args) -> int:
     print(text)
     print(f"\nraw results: {out / 'results.json'}, {out / 'results.csv'}; plots: {', '.join(str(p) for p in pngs)}")
     return 0
+
+
+SETS = [("seen", "the validation split: instructions never seen in training"), ("unseen_a", "smaller, denser, misspelled"),
+        ("unseen_b", "larger, sparser, respelled ids"), ("dense", "rooms 50-65 % full, random and conflicting relations"),
+        ("human", "the iTHOR rooms; the row `human` is the arrangement people made")]
+
+
+def readme_section(root: Path) -> str:
+    """The README's placement tables, pasted from the stored `table.md` of each set (never typed in)."""
+    parts = []
+    for name, note in SETS:
+        path = root / f"placement-{name}" / "table.md"
+        if path.exists():
+            parts.append(f"**{name}** ({note}):\n\n" + path.read_text().split("\n", 2)[2].strip())
+    return "\n\n".join(parts)
