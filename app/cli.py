@@ -215,6 +215,16 @@ def cmd_train_language(args) -> int:
     return 0
 
 
+def cmd_train_roles(args) -> int:
+    from models.language.roles.train import RolesConfig, train
+    cfg = RolesConfig(out=args.out, seed=args.seed, epochs=args.epochs, lr=args.lr, batch_size=args.batch_size,
+                      limit=args.limit or None, eval_limit=args.eval_limit or None)
+    head = train(cfg)
+    print(f"role head: {head}  (log: {Path(args.out) / 'train.csv'}, curves: {Path(args.out) / 'curves.png'})")
+    print(f"ship it: cp {head} models/weights/roles/head.pt")
+    return 0
+
+
 def cmd_train_placement(args) -> int:
     from models.placement.plan2place.agent import TrainConfig, export_weights, plot_curves, train
     from models.placement.plan2place.network import NetConfig
@@ -353,6 +363,16 @@ def build_parser() -> argparse.ArgumentParser:
     t.add_argument("--no-global", action="store_true", help="ablation: the global state s_g zeroed")
     t.add_argument("--compare", metavar="DIR", help="another run (e.g. --no-global) for the E_rel figure")
     t.set_defaults(run=cmd_train_placement)
+    t = train.add_parser("roles", help="f_theta2: MiniLM (frozen) + two-layer role head on id_train")
+    t.add_argument("--out", default="runs/roles", metavar="DIR",
+                   help="features/, checkpoint.pt, train.csv, curves.png, head.pt")
+    t.add_argument("--seed", type=int, default=0)
+    t.add_argument("--epochs", type=int, default=40)
+    t.add_argument("--lr", type=float, default=1e-3)
+    t.add_argument("--batch-size", type=int, default=256)
+    t.add_argument("--limit", type=int, default=1200, help="id_train rows, a seeded sample (0: all 10,786)")
+    t.add_argument("--eval-limit", type=int, default=250, help="id_eval rows for the held-out curve (0: all)")
+    t.set_defaults(run=cmd_train_roles)
 
     p = sub.add_parser("data", help="rebuild the bundled constraint datasets (deterministic)")
     p.add_argument("what", choices=["build"])

