@@ -48,3 +48,12 @@ def test_train_roles_tiny_is_seeded_and_resumable(tmp_path: Path, learned):
     assert len(log) == 3 and (tmp_path / "curves.png").stat().st_size > 0 and (tmp_path / "head.pt").exists()
     assert main([*args[:-1], "3"]) == 0  # resumes from epoch 2: one more row, features from the cache
     assert len((tmp_path / "train.csv").read_text().splitlines()) == 4
+
+
+def test_hybrid_takes_naming_from_rules_and_the_anchor_from_the_head(learned):
+    from models.language.roles.model import HybridRoles
+    hybrid = HybridRoles()
+    # "chilled" names no fridge: inference by the naming rule whatever the head scores
+    roles = hybrid.predict("Put a chilled bread on the counter", ["Bread", "CounterTop", "Fridge"])
+    assert roles == [{"key"}, {"key", "anchor"}, {"inference"}]
+    assert sum("anchor" in r for r in hybrid.predict("Examine the watch under the lamp", ["Watch", "DeskLamp"])) == 1

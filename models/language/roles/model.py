@@ -91,3 +91,23 @@ class LearnedRoles:
             return []
         p = self.probabilities(instruction, types).tolist()
         return decode([r[0] for r in p], [r[1] for r in p], [r[2] for r in p])
+
+
+class HybridRoles(LearnedRoles):
+    """The best measured combination: key / inference from the naming rule (the label's own definition,
+    `RuleRoles`) and the anchor from the learned head (argmax of its anchor score)."""
+
+    name = "hybrid"
+
+    def __init__(self, weights: str | Path | None = None):
+        super().__init__(weights)
+        from models.language.roles import RuleRoles
+        self.rules = RuleRoles()
+
+    def predict(self, instruction: str, types: list[str]) -> list[set[str]]:
+        if not types:
+            return []
+        anchor_scores = self.probabilities(instruction, types)[:, 1].tolist()
+        anchor = max(range(len(types)), key=anchor_scores.__getitem__)
+        return [(roles - {"anchor"}) | ({"anchor"} if i == anchor else set())
+                for i, roles in enumerate(self.rules.predict(instruction, types))]
