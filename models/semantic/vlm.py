@@ -25,17 +25,17 @@ class VLMError(RuntimeError):
 
 
 def top_view_png(room_type: str, width: float, depth: float, items: list[LayoutItem]) -> bytes:
+    import numpy as np
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
-    import numpy as np
+    from matplotlib.patches import Rectangle
 
     fig = Figure(figsize=(4, 4 * depth / max(width, 1e-6)))
     FigureCanvasAgg(fig)
     ax = fig.add_subplot()
-    ax.add_patch(__import__("matplotlib.patches", fromlist=["Rectangle"]).Rectangle((0, 0), width, depth, fill=False))
+    ax.add_patch(Rectangle((0, 0), width, depth, fill=False))
     for it, b in zip(items, _boxes(items)):
-        ax.add_patch(__import__("matplotlib.patches", fromlist=["Rectangle"]).Rectangle(
-            (b[0], b[1]), b[2] - b[0], b[3] - b[1], alpha=0.4))
+        ax.add_patch(Rectangle((b[0], b[1]), b[2] - b[0], b[3] - b[1], alpha=0.4))
         r = np.radians(it.rotation)
         ax.plot([it.x, it.x + 0.3 * np.sin(r)], [it.z, it.z + 0.3 * np.cos(r)], "k-")
         ax.text(it.x, it.z, it.type, fontsize=6, ha="center")
