@@ -135,11 +135,34 @@ def cmd_demo(args) -> int:
 
 
 def cmd_data(args) -> int:
+    from app.batch.executors import executor_from_args
     from models.datasets.constraint_sets import ALL_SETS, write_dataset
-    for name in ALL_SETS:
-        path, digest = write_dataset(name)
+    with executor_from_args(args, serial_default=True) as executor:  # one set per task
+        done = {d.index: d for d in executor.run(write_dataset, ALL_SETS)}
+    for i in range(len(ALL_SETS)):
+        if done[i].error:
+            print(f"h3ds: error: {ALL_SETS[i]}: {done[i].error}", file=sys.stderr)
+            return 1
+        path, digest = done[i].value
         print(f"{path}  sha256 {digest}")
     return 0
+
+
+def cmd_batch_generate(args) -> int:
+    from app.batch.executors import executor_from_args
+    from app.batch.scenes import BatchError, run_batch
+    try:
+        with executor_from_args(args) as executor:
+            print(f"batch: {args.input} -> {args.out} on {executor.name} ({executor.workers} workers)",
+                  file=sys.stderr, flush=True)
+            summary = run_batch(Path(args.input), Path(args.out), executor, args.parser, not args.no_progress)
+    except BatchError as e:
+        raise BadInput(str(e)) from e
+    print(f"{summary.done} generated, {summary.skipped} already complete, {summary.failed} failed of "
+          f"{summary.total} lines in {summary.seconds:.1f} s; results: {Path(args.out) / 'results.jsonl'}")
+    for line in summary.errors[:10]:
+        print(f"  failed: {line}", file=sys.stderr)
+    return 1 if summary.failed else 0
 
 
 def cmd_studio(args) -> int:
@@ -313,7 +336,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     p = sub.add_parser("bench", help="benchmarks that print figures: parser, generate, placement, energy")
     p.add_argument("what", choices=["parser", "generate", "placement", "energy", "studio", "language", "vrpose",
-                                          "plan2place", "bridge"])
+                                          "plan2place", "bridge", "batch"])
     p.add_argument("--n", type=int, default=30, help="instructions (generate) or plans (placement) to run")
     p.add_argument("--split", default="valid_unseen", help="ALFRED split to score (parser)")
     p.add_argument("--dataset", default="seen", choices=["seen", "unseen_a", "unseen_b", "dense", "human"],
@@ -329,6 +352,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--n-slow", type=int, default=18, help="vrpose: scenes also placed by the slower solvers")
     p.add_argument("--runs", default=None, help="plan2place: comma-separated checkpoints or training folders "
                    "(default: the shipped weights)")
+    _executor_options(p, "placement: worker processes (default: this process)")
     p.set_defaults(run=cmd_bench)
 
     p = sub.add_parser("train", help="train a model (seeded, resumable, loss curves): language")
@@ -376,8 +400,30 @@ def build_parser() -> argparse.ArgumentParser:
 
     p = sub.add_parser("data", help="rebuild the bundled constraint datasets (deterministic)")
     p.add_argument("what", choices=["build"])
+    _executor_options(p, "worker processes, one dataset each (default: this process)")
     p.set_defaults(run=cmd_data)
+
+    p = sub.add_parser("batch", help="many scenes from a JSONL file, on local processes or Ray (resumable)")
+    batch = p.add_subparsers(dest="batch_command", required=True, parser_class=Parser)
+    b = batch.add_parser("generate", help='one scene per line {"instruction", "room_type", "seed"?, "solver"?, '
+                         '"id"?}: the five files of `generate` each, plus results.jsonl')
+    b.add_argument("input", metavar="IN.jsonl")
+    b.add_argument("--out", required=True, metavar="DIR", help="scenes/<id>/ and results.jsonl; a re-run skips "
+                   "the scenes already complete here")
+    b.add_argument("--parser", choices=["combined", "rules", "lora"], default=None,
+                   help="instruction parser (default: the pipeline's)")
+    b.add_argument("--no-progress", action="store_true", help="no progress bar")
+    _executor_options(b, "worker processes (default: one per CPU; on Ray: the cluster's CPUs)")
+    b.set_defaults(run=cmd_batch_generate)
     return ap
+
+
+def _executor_options(p, workers_help: str) -> None:
+    p.add_argument("--workers", type=int, default=None, metavar="N", help=workers_help)
+    p.add_argument("--ray", action="store_true", help="run on Ray: a local Ray started here, or the cluster at "
+                   "RAY_ADDRESS")
+    p.add_argument("--ray-address", default=None, metavar="ADDRESS", help="join this Ray cluster (e.g. "
+                   "ray://head:10001, or auto on a cluster node)")
 
 
 def main(argv: list[str] | None = None) -> int:

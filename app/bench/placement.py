@@ -52,7 +52,23 @@ def score(plan, layout) -> dict:
             "unplaced": {u.id: u.reason for u in layout.unplaced}}
 
 
-def run(dataset: str, solvers: list[str], n: int, seeds: int, budget: float | None) -> list[dict]:
+_solvers: dict = {}  # one instance per solver name per worker process
+
+
+def solve_and_score(task: tuple) -> dict:
+    """One (solver, seed, plan) run and its scores: the unit of work an executor runs."""
+    dataset, solver_name, seed, plan, budget = task
+    if solver_name not in _solvers:
+        _solvers[solver_name] = get_solver(solver_name)
+    solver = _solvers[solver_name]
+    layout = solver.solve(plan, seed=seed, time_budget_s=budget)
+    return {"dataset": dataset, "solver": solver_name, "seed": seed, "plan": plan.id, **score(plan, layout)}
+
+
+def run(dataset: str, solvers: list[str], n: int, seeds: int, budget: float | None, executor=None) -> list[dict]:
+    """Every solver x seed x plan; through `executor` (app.batch.executors; default: this process), rows
+    in that order whatever order the runs finish in. Workers share the CPUs: PTO grows with --workers."""
+    from app.batch.executors import InProcess
     records = pick_records(dataset, n)
     plans = [r.plan for r in records]
     rows = []
@@ -60,21 +76,17 @@ def run(dataset: str, solvers: list[str], n: int, seeds: int, budget: float | No
     for seed in range(seeds):
         rows.extend({"dataset": dataset, "solver": "human", "seed": seed, "plan": r.plan.id,
                      **score(r.plan, r.reference)} for r in records if r.reference is not None)
-    total = len(solvers) * seeds * len(plans)
-    done, start = 0, time.perf_counter()
-    for solver_name in solvers:
-        solver = get_solver(solver_name)
-        for seed in range(seeds):
-            for plan in plans:
-                layout = solver.solve(plan, seed=seed, time_budget_s=budget)
-                rows.append({"dataset": dataset, "solver": solver_name, "seed": seed, "plan": plan.id,
-                             **score(plan, layout)})
-                done += 1
-                eta = (time.perf_counter() - start) / done * (total - done)
-                print(f"\r  {dataset}: {solver_name} seed {seed + 1}/{seeds} plan {done}/{total} "
-                      f"(~{eta / 60:.1f} min left)   ", end="", file=sys.stderr, flush=True)
+    tasks = [(dataset, s, seed, plan, budget) for s in solvers for seed in range(seeds) for plan in plans]
+    runs, start = {}, time.perf_counter()
+    for done in (executor or InProcess()).run(solve_and_score, tasks):
+        if done.error:
+            raise RuntimeError(f"{tasks[done.index][1]} on {tasks[done.index][3].id}: {done.error}")
+        runs[done.index] = done.value
+        eta = (time.perf_counter() - start) / len(runs) * (len(tasks) - len(runs))
+        print(f"\r  {dataset}: {done.value['solver']} seed {done.value['seed'] + 1}/{seeds} plan {len(runs)}/"
+              f"{len(tasks)} (~{eta / 60:.1f} min left)   ", end="", file=sys.stderr, flush=True)
     print(file=sys.stderr)
-    return rows
+    return rows + [runs[i] for i in range(len(tasks))]
 
 
 def complete_everywhere(rows: list[dict], solvers: list[str]) -> set[tuple[str, int]]:
@@ -162,7 +174,9 @@ def main(args) -> int:
         get_solver(s)  # unknown names fail here, before any work
     out = Path(args.out or f"out/bench/placement-{args.dataset}")
     out.mkdir(parents=True, exist_ok=True)
-    rows = run(args.dataset, solvers, args.n, args.seeds, args.budget)
+    from app.batch.executors import executor_from_args
+    with executor_from_args(args, serial_default=True) as executor:
+        rows = run(args.dataset, solvers, args.n, args.seeds, args.budget, executor)
     if any(r["solver"] == "human" for r in rows):
         solvers = ["human", *solvers]
     (out / "results.json").write_text(json.dumps(rows, indent=1))
