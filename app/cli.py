@@ -14,11 +14,14 @@ from pydantic import ValidationError
 
 from models.language import InstructionError
 from models.placement import UnknownSolver
+from models.planning.apartment_planner import ApartmentError, is_apartment, parse_rooms
+from models.planning.floorplan import FloorplanError
 from models.world import ROOM_TYPES, UnknownRoomType
 
 EXAMPLES = """examples:
   h3ds parse "Put a chilled bread on the counter" --room-type kitchen
   h3ds generate "Put a chilled bread on the counter" --room-type kitchen --out out/bread
+  h3ds generate "Put a chilled bread on the counter" --room-type apartment --rooms "kitchen, bedroom" --out out/flat
   h3ds place out/bread/plan.json --solver dfs --seed 3 --out layout.json
 """
 
@@ -113,6 +116,10 @@ def cmd_place(args) -> int:
 
 def cmd_generate(args) -> int:
     from app.pipeline import Pipeline, write_generation
+    if is_apartment(args.room_type):
+        return _generate_apartment(args)
+    if args.rooms is not None:
+        raise BadInput("--rooms needs --room-type apartment")
     gen = Pipeline(parser=_parser_of(args)).generate(args.instruction, args.room_type, seed=args.seed,
                                                      solver=args.solver)
     paths = write_generation(gen, Path(args.out))
@@ -120,6 +127,18 @@ def cmd_generate(args) -> int:
         print(p)
     if gen.scene.unplaced:
         print(f"note: {len(gen.scene.unplaced)} object(s) could not be placed; see layout.json", file=sys.stderr)
+    return 0
+
+
+def _generate_apartment(args) -> int:
+    from app.pipeline import Pipeline, write_apartment
+    rooms = parse_rooms(args.rooms)
+    apartment = Pipeline(parser=_parser_of(args)).generate_apartment(args.instruction, rooms, seed=args.seed,
+                                                                     solver=args.solver)
+    for p in write_apartment(apartment, Path(args.out)):
+        print(p)
+    for u in apartment.unplaced:
+        print(f"note: {u.id} could not be placed: {u.reason}", file=sys.stderr)
     return 0
 
 
@@ -300,7 +319,9 @@ def build_parser() -> argparse.ArgumentParser:
 
     p = sub.add_parser("generate", help="the whole pipeline -> task_graph, plan, layout, house JSON and GLB")
     p.add_argument("instruction")
-    p.add_argument("--room-type", required=True, help=room_help)
+    p.add_argument("--room-type", required=True, help=room_help + "; or apartment (several rooms joined by doors)")
+    p.add_argument("--rooms", default=None, help='with --room-type apartment: the rooms, e.g. "kitchen, living room, '
+                   'bedroom, bathroom" (at most 8; default: 2-5 rooms chosen from the task and the seed)')
     p.add_argument("--seed", type=int, default=0, help="same seed, same scene")
     p.add_argument("--solver", default=None)
     p.add_argument("--out", required=True, metavar="DIR")
@@ -430,7 +451,7 @@ def main(argv: list[str] | None = None) -> int:
     try:
         args = build_parser().parse_args(argv)
         return args.run(args)
-    except (BadInput, InstructionError, UnknownRoomType, UnknownSolver) as e:
+    except (BadInput, InstructionError, UnknownRoomType, UnknownSolver, ApartmentError, FloorplanError) as e:
         print(f"h3ds: error: {e}", file=sys.stderr)
         return 2
     except ValidationError as e:

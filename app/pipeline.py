@@ -16,8 +16,11 @@ from models.language import InstructionParser, RuleParser
 from models.placement import PlacementProblem, StepObserver, get_solver
 from models.placement.base import Fixed
 from models.planning import ConstraintWriter, RoomPlanner
+from models.planning.apartment_planner import ApartmentPlanner
 from models.scene import assemble_scene
+from models.scene.apartment import assemble_apartment
 from models.values import ConstraintPlan, Layout, Placement, RoomPlan, Scene, TaskGraph, Timing
+from models.values.apartment import Apartment
 from models.world import normalise_room_type
 
 
@@ -60,6 +63,15 @@ class Pipeline:
         scene = assemble_scene(room_plan, layout, graph, seed, plan.constraints)
         return Generation(graph, room_plan, plan, layout, scene)
 
+
+    def generate_apartment(self, instruction: str, rooms: list[str] | None = None, seed: int = 0,
+                           solver: str | None = None, observer: StepObserver | None = None) -> Apartment:
+        """Several rooms joined by doors; the task's own room type is inferred from the instruction."""
+        graph = self.parse(instruction, None)
+        house = ApartmentPlanner(self.planner).plan(graph, rooms, seed=seed, plan_id=f"apartment-{seed}")
+        plans = [self.writer.write(rp) for rp in house.room_plans]
+        layouts = [self.place(plan, seed, solver, observer) for plan in plans]
+        return assemble_apartment(house, plans, layouts, graph, seed)
 
     def replan(self, gen: Generation, constraints: str, seed: int = 0, solver: str | None = None,
                observer: StepObserver | None = None) -> Generation:
@@ -115,6 +127,34 @@ def dump(value) -> str:
     return json.dumps(value.model_dump(mode="json", exclude_none=True), indent=2)
 
 
+def _write_texts(out_dir: Path, texts: dict[str, str]) -> list[Path]:
+    paths = []
+    for name, text in texts.items():
+        (out_dir / name).parent.mkdir(parents=True, exist_ok=True)
+        (out_dir / name).write_text(text + "\n")
+        paths.append(out_dir / name)
+    return paths
+
+
+def write_apartment(apartment: Apartment, out_dir: Path) -> list[Path]:
+    """`generate --room-type apartment`: the task graph, the floorplan, rooms/<n>-<type>/plan.json and
+    layout.json per room (each one readable by `h3ds place`), house.json and scene.glb of the whole house."""
+    from models.exports.apartment import apartment_glb, apartment_house
+
+    texts = {"task_graph.json": dump(apartment.task_graph), "floorplan.json": json.dumps(
+                 {**json.loads(dump(apartment.floorplan)), "assignment": apartment.plan.assignment}, indent=2),
+             "navigation.json": json.dumps({"key_nav": apartment.key_nav, "e_nav": apartment.e_nav,
+                                            **apartment.path.model_dump(mode="json")}, indent=2),
+             "house.json": json.dumps(apartment_house(apartment), indent=2)}
+    for hr, plan, layout in zip(apartment.floorplan.rooms, apartment.plans, apartment.layouts):
+        folder = f"rooms/{hr.id.split('|')[-1]}-{hr.room.type.replace(' ', '-')}"
+        texts[f"{folder}/plan.json"] = dump(plan)
+        texts[f"{folder}/layout.json"] = dump(layout)
+    paths = _write_texts(out_dir, texts)
+    (out_dir / "scene.glb").write_bytes(apartment_glb(apartment))
+    return paths + [out_dir / "scene.glb"]
+
+
 def write_generation(gen: Generation, out_dir: Path) -> list[Path]:
     """The five files of `h3ds generate`."""
     from models.exports.glb import to_glb  # trimesh takes ~0.6 s to import: only when a GLB is written
@@ -123,10 +163,7 @@ def write_generation(gen: Generation, out_dir: Path) -> list[Path]:
     out_dir.mkdir(parents=True, exist_ok=True)
     texts = {"task_graph.json": dump(gen.task_graph), "plan.json": dump(gen.plan), "layout.json": dump(gen.layout),
              "house.json": json.dumps(to_house(gen.scene), indent=2)}
-    paths = []
-    for name, text in texts.items():
-        (out_dir / name).write_text(text + "\n")
-        paths.append(out_dir / name)
+    paths = _write_texts(out_dir, texts)
     (out_dir / "scene.glb").write_bytes(to_glb(gen.scene))
     paths.append(out_dir / "scene.glb")
     return paths

@@ -92,10 +92,14 @@ def access_strip(f: Footprint, depth: float = ACCESS_DEPTH) -> Footprint:
     return f.front_zone(depth)
 
 
-def can_reach(grid: Grid, reachable: np.ndarray, f: Footprint) -> bool:
+def strip_mask(grid: Grid, f: Footprint) -> np.ndarray:
+    """The cells of the object's access strip."""
     gx, gz = grid.mesh()
-    inside = shapely.contains_xy(access_strip(f).polygon(), gx, gz)
-    return bool((inside & reachable).any())
+    return shapely.contains_xy(access_strip(f).polygon(), gx, gz)
+
+
+def can_reach(grid: Grid, reachable: np.ndarray, f: Footprint) -> bool:
+    return bool((strip_mask(grid, f) & reachable).any())
 
 
 def largest_free_share(blocked: np.ndarray) -> float:

@@ -13,7 +13,7 @@ import trimesh
 
 from models.scene.walls import wall_boxes
 from models.shapes import shape_mesh
-from models.values import Scene, SceneObject
+from models.values import Room, Scene, SceneObject
 
 ROLE_COLOURS = {"anchor": (220, 60, 60, 255), "key": (240, 160, 40, 255), "inference": (60, 120, 220, 255),
                 "context": (170, 170, 170, 255)}
@@ -47,8 +47,12 @@ def _shape(obj: SceneObject, colour) -> trimesh.Trimesh:
     return _placed(mesh, (obj.x, obj.y, obj.z), obj.rotation, obj.id)
 
 
-def _wall_pieces(scene: Scene) -> list[trimesh.Trimesh]:
-    return [_box(w.extents, w.centre, 0, WALL_COLOUR, w.name) for w in wall_boxes(scene.room)]
+def _room_meshes(room: Room, x: float = 0.0, z: float = 0.0, prefix: str = "") -> list[trimesh.Trimesh]:
+    """The floor and the walls of a room whose (0, 0) corner is at (x, z)."""
+    meshes = [_box((room.width, 0.02, room.depth), (x + room.width / 2, -0.01, z + room.depth / 2), 0,
+                   FLOOR_COLOUR, prefix + "floor")]
+    return meshes + [_box(w.extents, (w.centre[0] + x, w.centre[1], w.centre[2] + z), 0, WALL_COLOUR, prefix + w.name)
+                     for w in wall_boxes(room)]
 
 
 def _object_meshes(obj: SceneObject) -> list[trimesh.Trimesh]:
@@ -59,17 +63,27 @@ def _object_meshes(obj: SceneObject) -> list[trimesh.Trimesh]:
     return meshes
 
 
-def to_trimesh_scene(scene: Scene) -> trimesh.Scene:
-    room = scene.room
-    meshes = [_box((room.width, 0.02, room.depth), (room.width / 2, -0.01, room.depth / 2), 0, FLOOR_COLOUR, "floor")]
-    meshes += _wall_pieces(scene)
-    for obj in scene.objects:
-        meshes += _object_meshes(obj)
+def _gltf_scene(meshes: list[trimesh.Trimesh]) -> trimesh.Scene:
     out = trimesh.Scene()
     for mesh in meshes:
         mesh.apply_transform(UNITY_TO_GLTF)
         out.add_geometry(mesh, node_name=mesh.metadata["name"], geom_name=mesh.metadata["name"])
     return out
+
+
+def to_trimesh_scene(scene: Scene) -> trimesh.Scene:
+    meshes = _room_meshes(scene.room)
+    for obj in scene.objects:
+        meshes += _object_meshes(obj)
+    return _gltf_scene(meshes)
+
+
+def house_glb(rooms: list[tuple[Room, float, float, str]], objects: list[SceneObject]) -> bytes:
+    """Several rooms (room, x, z of its corner, name prefix) and their objects, all in the house frame."""
+    meshes = [m for room, x, z, prefix in rooms for m in _room_meshes(room, x, z, prefix)]
+    for obj in objects:
+        meshes += _object_meshes(obj)
+    return _gltf_scene(meshes).export(file_type="glb")
 
 
 def to_glb(scene: Scene) -> bytes:

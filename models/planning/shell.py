@@ -15,11 +15,11 @@ WINDOW_SILL = 0.8  # window holes start this high above the floor
 WINDOW_MAX_HEIGHT = WALL_HEIGHT - WINDOW_SILL - 0.2
 
 
-def _snap(v: float, step: float = 0.05) -> float:
+def snap(v: float, step: float = 0.05) -> float:
     return round(round(v / step) * step, 3)
 
 
-def _free_spans(length: float, taken: list[tuple[float, float]], need: float) -> list[tuple[float, float]]:
+def free_spans(length: float, taken: list[tuple[float, float]], need: float) -> list[tuple[float, float]]:
     """Intervals of centre positions where an opening of width `need` fits between the taken ones."""
     spans, start = [], CORNER_MARGIN
     for lo, hi in sorted(taken) + [(length - CORNER_MARGIN, length)]:
@@ -32,10 +32,10 @@ def _free_spans(length: float, taken: list[tuple[float, float]], need: float) ->
 def _place_opening(rng: random.Random, room_sides: dict[str, float], taken: dict[str, list], width: float,
                    walls: list[str]) -> tuple[str, float] | None:
     for wall in walls:
-        spans = _free_spans(room_sides[wall], taken[wall], width)
+        spans = free_spans(room_sides[wall], taken[wall], width)
         if spans:
             lo, hi = rng.choice(spans)
-            centre = _snap(rng.uniform(lo, hi)) if hi > lo else _snap(lo)
+            centre = snap(rng.uniform(lo, hi)) if hi > lo else snap(lo)
             centre = min(max(centre, CORNER_MARGIN + width / 2), room_sides[wall] - CORNER_MARGIN - width / 2)
             taken[wall].append((centre - width / 2, centre + width / 2))
             return wall, centre
@@ -48,9 +48,9 @@ def make_room(room_type: str, rng: random.Random, min_area: float = 0.0, size_sc
     spec = ROOM_SPECS[room_type]
     structure = load_json("structure.json")
     lo, hi = spec.min_side * size_scale, spec.max_side * size_scale
-    width, depth = _snap(rng.uniform(lo, hi)), _snap(rng.uniform(lo, hi))
+    width, depth = snap(rng.uniform(lo, hi)), snap(rng.uniform(lo, hi))
     while width * depth < min_area:
-        width, depth = _snap(width * 1.1), _snap(depth * 1.1)
+        width, depth = snap(width * 1.1), snap(depth * 1.1)
     sides = {"south": width, "north": width, "west": depth, "east": depth}
     taken: dict[str, list] = {w: [] for w in WALLS}
 
