@@ -29,6 +29,25 @@ def start_studio(tmp_path_factory):
     return Studio("127.0.0.1", random.randint(20000, 40000), store)
 
 
+@pytest.fixture(scope="module")
+def studio(tmp_path_factory):
+    """A studio on a fresh SQLite database, one per test module."""
+    s = start_studio(tmp_path_factory)
+    yield s
+    s.stop()
+
+
+@pytest.fixture(scope="module")
+def browser():
+    """Debian's chromium, one per test module."""
+    from playwright.sync_api import sync_playwright
+
+    with sync_playwright() as p:
+        b = launch(p)
+        yield b
+        b.close()
+
+
 def launch(playwright_api):
     assert Path(CHROMIUM).exists(), "Debian's chromium is missing: `make test` installs it (apt-get install chromium)"
     return playwright_api.chromium.launch(executable_path=CHROMIUM, args=ARGS)

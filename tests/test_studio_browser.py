@@ -8,25 +8,10 @@ import re
 from pathlib import Path
 
 import pytest
-from studio_support import (SCREENSHOTS, WAIT, choose, field, generate, launch, object_xy, open_studio,
-                            session_of, settle, start_studio)
+from studio_support import (  # noqa: F401 (browser and studio are fixtures)
+    SCREENSHOTS, WAIT, browser, choose, field, generate, object_xy, open_studio, session_of, settle, studio)
 
-playwright_api = pytest.importorskip("playwright.sync_api")
-
-
-@pytest.fixture(scope="module")
-def studio(tmp_path_factory):
-    s = start_studio(tmp_path_factory)
-    yield s
-    s.stop()
-
-
-@pytest.fixture(scope="module")
-def browser():
-    with playwright_api.sync_playwright() as p:
-        b = launch(p)
-        yield b
-        b.close()
+pytest.importorskip("playwright.sync_api")
 
 
 def test_designer_flow(browser, studio):

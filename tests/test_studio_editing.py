@@ -12,29 +12,14 @@ from pathlib import Path
 import numpy as np
 import pytest
 from PIL import Image
-from studio_support import (WAIT, choose, field, generate, launch, object_xy, open_studio, screen_xy, session_of,
-                            settle, start_studio, wait_until)
+from studio_support import (  # noqa: F401 (browser and studio are fixtures)
+    WAIT, browser, choose, field, generate, object_xy, open_studio, screen_xy, session_of, settle, studio, wait_until)
 
 from frontend.camera import PANEL_PX, room_points
 from models.exports.procthor_house import to_house
 from models.shapes import family_of
 
-playwright_api = pytest.importorskip("playwright.sync_api")
-
-
-@pytest.fixture(scope="module")
-def studio(tmp_path_factory):
-    s = start_studio(tmp_path_factory)
-    yield s
-    s.stop()
-
-
-@pytest.fixture(scope="module")
-def browser():
-    with playwright_api.sync_playwright() as p:
-        b = launch(p)
-        yield b
-        b.close()
+pytest.importorskip("playwright.sync_api")
 
 
 def floor_like(rgb: np.ndarray) -> np.ndarray:

@@ -84,8 +84,11 @@ class HeadsetSimulator:
 
     async def send(self, kind: str, body: dict) -> dict:
         """Send a message; a numbered one is kept until acked (and resent after a reconnect)."""
-        msg = self.make(kind, body)
-        if kind not in UNNUMBERED:
+        return await self.send_made(self.make(kind, body))
+
+    async def send_made(self, msg: dict) -> dict:
+        """Send a message built by `make`, kept until acked like any other."""
+        if msg["type"] not in UNNUMBERED:
             self.outbox[msg["id"]] = msg
             self._acked.clear()
         await self._transmit(msg)
