@@ -115,3 +115,14 @@ def test_milp_reads_back_only_a_feasible_solution_and_says_why():
     poses, reasons = MILPSolver().run(model, ov, seed=0, seconds=1.0)
     assert poses == {} and set(reasons) == set(ov)
     assert all("no feasible layout" in r for r in reasons.values())
+
+
+def test_z3_stops_stating_a_model_that_outlasts_its_budget():
+    """Stating a big model through Z3's Python API is slow: with no time left it stops and says so."""
+    from models.placement.formulation import build
+    from models.placement.problem import PlacementProblem
+    from models.placement.smt import Z3Solver
+    model, ov = build(PlacementProblem.from_plan(plan(KITCHEN, KITCHEN_TEXT)))
+    poses, reasons = Z3Solver().run(model, ov, seed=0, seconds=0.001)
+    assert poses == {} and set(reasons) == set(ov)
+    assert all("could not state the model" in r for r in reasons.values())

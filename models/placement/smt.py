@@ -34,19 +34,26 @@ class Z3Solver(ModelSolver):
         def on(names: list[str]):
             return z3.And([v[n] == 1 for n in names]) if names else z3.BoolVal(True)
 
+        def statements():
+            """Add the model to `opt`, one statement per step."""
+            for n, var in model.vars.items():
+                yield opt.add(v[n] >= var.lo, v[n] <= var.hi)
+            for when, rows in model.hard:
+                yield opt.add(z3.Implies(on(when), z3.And([lin(r) <= 0 for r in rows])))
+            for when, groups, _ in model.choices:
+                yield opt.add(z3.Implies(on(when), z3.Or([z3.And([lin(r) <= 0 for r in g]) for g in groups])))
+            # the objective's binary terms (soft constraints, placed flags) become weighted soft goals
+            for n, coef in model.objective.terms.items():
+                if model.vars[n].binary and coef < 0:
+                    yield opt.add_soft(v[n] == 1, weight=str(round(-coef, 4)))
+
         deadline = time.perf_counter() + seconds
         opt = z3.Optimize()
         z3.set_param("smt.random_seed", int(seed) % 2**31, "sat.random_seed", int(seed) % 2**31)
-        for n, var in model.vars.items():
-            opt.add(v[n] >= var.lo, v[n] <= var.hi)
-        for when, rows in model.hard:
-            opt.add(z3.Implies(on(when), z3.And([lin(r) <= 0 for r in rows])))
-        for when, groups, _ in model.choices:
-            opt.add(z3.Implies(on(when), z3.Or([z3.And([lin(r) <= 0 for r in g]) for g in groups])))
-        # the objective's binary terms (soft constraints, placed flags) become weighted soft goals
-        for n, coef in model.objective.terms.items():
-            if model.vars[n].binary and coef < 0:
-                opt.add_soft(v[n] == 1, weight=str(round(-coef, 4)))
+        # stating a big model through the Python API can outlast the budget on its own: stop when it does
+        for _ in statements():
+            if time.perf_counter() > deadline - READ_MARGIN_S:
+                return {}, {oid: f"Z3 could not state the model within {seconds:.2f} s" for oid in ov}
         # stating the model takes time too: Z3 gets what is left, less a margin for reading the model back
         left = max(0.02, deadline - time.perf_counter() - READ_MARGIN_S)
         opt.set("timeout", int(1000 * left))
