@@ -14,11 +14,15 @@ from pydantic import AfterValidator, BaseModel, Field
 
 from app.bridge import bridge_for, mount
 from app.pipeline import Pipeline, dump
+from models.exports.apartment import apartment_house
 from models.exports.glb import to_glb
 from models.exports.procthor_house import to_house
 from models.language import InstructionError, check_instruction
 from models.placement import SOLVERS
+from models.planning.apartment_planner import APARTMENT, ApartmentError, is_apartment, parse_rooms
+from models.planning.floorplan import FloorplanError
 from models.values import Scene
+from models.values.apartment import Apartment
 from models.world import normalise_room_type
 from studio_db import NotFound, Store
 from studio_db.store import Edit
@@ -35,9 +39,15 @@ class GenerateRequest(BaseModel):
 
     instruction: Annotated[str, Field(min_length=1, max_length=1000, examples=["Put a chilled bread on the counter"]),
                            AfterValidator(check_instruction)]
-    room_type: Annotated[str, Field(examples=["kitchen"]), AfterValidator(normalise_room_type)]
+    room_type: Annotated[str, Field(examples=["kitchen"]), AfterValidator(_room_type)]
     seed: int = Field(0, ge=0, le=2**31 - 1)
     solver: Annotated[str, AfterValidator(_known_solver)] = "dfs"
+    rooms: Annotated[list[str] | None, Field(max_length=100, examples=[["kitchen", "living room", "bedroom"]]),
+                     AfterValidator(parse_rooms)] = None  # room_type "apartment" only
+
+
+def _room_type(name: str) -> str:
+    return APARTMENT if is_apartment(name) else normalise_room_type(name)
 
 
 class EditIn(BaseModel):
@@ -53,6 +63,11 @@ class AcceptRequest(BaseModel):
     seed: int = Field(0, ge=0)
     solver: str = Field("dfs", min_length=1, max_length=40)
     edits: list[EditIn] = Field(default_factory=list)
+
+
+def _apartment(apartment: Apartment) -> dict:
+    return {"task_graph": json.loads(dump(apartment.task_graph)), "apartment": json.loads(dump(apartment)),
+            "house": apartment_house(apartment)}
 
 
 def create_app(store: Store, pipeline: Pipeline | None = None) -> FastAPI:
@@ -72,11 +87,18 @@ def create_app(store: Store, pipeline: Pipeline | None = None) -> FastAPI:
 
     @app.post("/generate")
     def generate(req: GenerateRequest) -> dict:
-        """Run the whole pipeline; nothing is stored until the scene is accepted."""
+        """Run the whole pipeline; nothing is stored until the scene is accepted. For room_type "apartment":
+        the task graph, the apartment (floorplan, rooms' plans, layouts and scenes, robot path) and its house JSON."""
+        if req.rooms is not None and req.room_type != APARTMENT:
+            raise HTTPException(422, [{"loc": ["body", "rooms"], "msg": "rooms needs room_type apartment"}])
         try:
+            if req.room_type == APARTMENT:
+                return _apartment(pipeline.generate_apartment(req.instruction, req.rooms, req.seed, req.solver))
             gen = pipeline.generate(req.instruction, req.room_type, seed=req.seed, solver=req.solver)
         except InstructionError as e:
             raise HTTPException(422, [{"loc": ["body", "instruction"], "msg": str(e)}]) from e
+        except (ApartmentError, FloorplanError) as e:
+            raise HTTPException(422, [{"loc": ["body", "rooms"], "msg": str(e)}]) from e
         return {k: json.loads(dump(getattr(gen, k))) for k in ("task_graph", "plan", "layout", "scene")}
 
     @app.post("/scenes", status_code=201)

@@ -116,7 +116,7 @@ def house_navigation(floorplan: Floorplan, objects: dict[str, Footprint], target
     graph = _grid_graph(reachable)
     near = np.flatnonzero((_start_cells(grid, blocked, start) & reachable).ravel())
     points, visits, missed = [start], [], []
-    here = int(near[0]) if len(near) else None
+    here = int(min(near, key=lambda c: (gx.flat[c] - start[0]) ** 2 + (gz.flat[c] - start[1]) ** 2)) if len(near) else None
     for oid in targets:
         f = objects.get(oid)
         cells = None

@@ -165,8 +165,8 @@ class SlicingFloorplan:
             if attempt is not None and (best is None or attempt[0] < best[0]):
                 best = attempt
         if best is None:
-            raise FloorplanError(f"could not lay out {len(shells)} rooms so that every room has a door "
-                                 f"(walls of at least {_door_span():.2f} m between neighbours)")
+            raise FloorplanError(f"could not lay out {len(shells)} rooms at least {MIN_SIDE} m wide with a door "
+                                 f"into each (at least {_door_span():.2f} m of shared wall)")
         _, bounds, tree, entrance = best
         return self._openings(shells, bounds, tree, entrance, rng, seed)
 
