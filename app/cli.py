@@ -360,6 +360,10 @@ def build_parser() -> argparse.ArgumentParser:
                                           "plan2place", "bridge", "batch"])
     p.add_argument("--n", type=int, default=30, help="instructions (generate) or plans (placement) to run")
     p.add_argument("--split", default="valid_unseen", help="ALFRED split to score (parser)")
+    p.add_argument("--room-type", default=None, choices=["apartment"], help="generate: apartments instead of "
+                   "one room per instruction")
+    p.add_argument("--rooms", default=None, help="generate --room-type apartment: the same rooms for every "
+                   "instruction (default: drawn from each task)")
     p.add_argument("--dataset", default="seen", choices=["seen", "unseen_a", "unseen_b", "dense", "human"],
                    help="placement: which constraint dataset")
     p.add_argument("--solvers", default="dfs,milp,z3", help="placement: comma-separated solver names")

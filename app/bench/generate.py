@@ -28,6 +28,9 @@ def quantile(values: list[float], q: float) -> float:
 
 
 def main(args) -> int:
+    if getattr(args, "room_type", None):
+        from app.bench.generate_apartment import main as apartment
+        return apartment(args)
     pipeline = Pipeline(solver="dfs")
     items = pick_instructions(args.n)
     pipeline.generate(*items[0], seed=0)  # warm-up: catalogue load, imports

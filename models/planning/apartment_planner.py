@@ -95,7 +95,7 @@ def choose_rooms(graph: TaskGraph, rng: random.Random) -> list[str]:
     for r in fill:
         if len(rooms) >= target:
             break
-        if r not in rooms or r == "bedroom":
+        if rooms.count(r) < FILL_ORDER.count(r):
             rooms.append(r)
     return rooms[:MAX_ROOMS]
 

@@ -1,0 +1,67 @@
+"""`h3ds bench generate --room-type apartment`: the whole apartment pipeline on ALFRED instructions.
+
+Per instruction, after one warm-up: generate (parse, rooms, per-room plans and placement, floorplan,
+navigation through the doors) plus the house JSON and GLB in memory; each room's placement time; the
+apartment's Key_NAV; and, as the baseline, the same instruction generated as one room of its own type.
+"""
+
+from __future__ import annotations
+
+import statistics
+import time
+
+from app.bench.generate import pick_instructions, quantile
+from app.pipeline import Pipeline
+from models.exports.apartment import apartment_glb, apartment_house
+from models.exports.glb import to_glb
+from models.exports.procthor_house import to_house
+from models.planning.apartment_planner import parse_rooms
+
+
+def _ms(values: list[float]) -> str:
+    return f"p50 {1000 * quantile(values, .5):8.1f} ms   p90 {1000 * quantile(values, .9):8.1f} ms"
+
+
+def main(args) -> int:
+    pipeline = Pipeline(solver="dfs")
+    rooms = parse_rooms(args.rooms)
+    items = pick_instructions(args.n)
+    pipeline.generate_apartment(items[0][0], rooms, seed=0)  # warm-up: catalogue load, imports
+    totals, singles, per_room, per_object, counts, key_nav, skipped = [], [], [], [], [], [], 0
+    unplaced = objects = 0
+    for i, (instruction, room) in enumerate(items):
+        try:
+            pipeline.parse(instruction, room)
+        except ValueError:
+            skipped += 1
+            continue
+        t0 = time.perf_counter()
+        apartment = pipeline.generate_apartment(instruction, rooms, seed=i)
+        apartment_house(apartment), apartment_glb(apartment)
+        totals.append(time.perf_counter() - t0)
+        per_room += [layout.timing.total_s for layout in apartment.layouts]
+        per_object += [layout.timing.per_object_s for layout in apartment.layouts]
+        counts.append(len(apartment.scenes))
+        key_nav += [apartment.key_nav] if apartment.key_nav is not None else []
+        unplaced += len(apartment.unplaced)
+        objects += sum(len(p.objects) + len(rp.surface_objects) for p, rp in zip(apartment.plans,
+                                                                                  apartment.plan.room_plans))
+        t0 = time.perf_counter()
+        gen = pipeline.generate(instruction, room, seed=i)
+        to_house(gen.scene), to_glb(gen.scene)
+        singles.append(time.perf_counter() - t0)
+    which = f"rooms {', '.join(rooms)}" if rooms else "2-5 rooms drawn from each task and seed"
+    print(f"generate --room-type apartment on {len(totals)} ALFRED valid_unseen instructions ({skipped} unparseable "
+          f"skipped), dfs placer, {which}")
+    print(f"  rooms per apartment     mean {statistics.mean(counts):.1f} (min {min(counts)}, max {max(counts)}), "
+          f"{len(per_room)} rooms in all")
+    print(f"  generate wall time      {_ms(totals)}   (with house JSON and GLB)")
+    print(f"  placing per room (dfs)  {_ms(per_room)}")
+    print(f"  placing share           {100 * sum(per_room) / sum(totals):5.1f} % of generate")
+    print(f"  dfs time per object     p50 {1000 * quantile(per_object, .5):8.2f} ms   p90 "
+          f"{1000 * quantile(per_object, .9):8.2f} ms")
+    print(f"  Key_NAV through doors   {100 * statistics.mean(key_nav):5.1f} (mean over {len(key_nav)} apartments)")
+    print(f"  unplaced objects        {unplaced} of {objects}")
+    print(f"  baseline: one room      {_ms(singles)}   (the task's own room type, same exports) -> apartment / "
+          f"room = {quantile(totals, .5) / quantile(singles, .5):.1f}x at p50")
+    return 0
