@@ -23,18 +23,21 @@ from viser import _messages
 
 from app.pipeline import Generation, Pipeline, generation_of, kept_before_edit
 from frontend import camera
+from frontend.apartment import ApartmentMode
 from frontend.checks import Finding, run_checks, summary
 from frontend.graph_image import render as render_graph
 from frontend.history import History
 from frontend.view import SceneView, world
 from models.constraints import GLOBALS, RELATIONS, Constraint, read_constraints, write_constraints
 from models.energy.exact import layout_energy
+from models.exports.apartment import apartment_glb, apartment_house
 from models.exports.glb import ROLE_COLOURS, to_glb
 from models.exports.procthor_house import to_house
 from models.language import InstructionError
 from models.metrics import SceneMetrics
 from models.placement import SOLVERS, PlacementStep
-from models.values import TaskGraph, TaskObject
+from models.planning.apartment_planner import APARTMENT
+from models.values import Scene, TaskGraph, TaskObject
 from models.world import ROOM_TYPES, catalogue
 from studio_db import Store
 from studio_db.store import Edit
@@ -103,6 +106,7 @@ class StudioSession:
         self.lock = threading.RLock()
         self.view = SceneView(client.scene)
         self.view.on_pick = self.pick
+        self.apartment = ApartmentMode(self)
         self.controls = None
         self.selected: str | None = None
         self._last_live = 0.0
@@ -137,7 +141,9 @@ class StudioSession:
 
         with tabs.add_tab("Task"):
             self.instruction = gui.add_text("Instruction", DEFAULT_INSTRUCTION)
-            self.room = gui.add_dropdown("Room type", ("infer",) + ROOM_TYPES, initial_value="kitchen")
+            self.room = gui.add_dropdown("Room type", ("infer",) + ROOM_TYPES + (APARTMENT,), initial_value="kitchen")
+            self.rooms = gui.add_text("Rooms (apartment)", "", hint="e.g. kitchen, living room, bedroom; empty: "
+                                      "2-5 rooms drawn from the task")
             self.seed = gui.add_number("Seed", 0, min=0, step=1)
             self.solver = gui.add_dropdown("Solver", tuple(sorted(SOLVERS)), initial_value=DEFAULT_SOLVER)
             self.generate_button = gui.add_button("Generate", color="green")
@@ -256,6 +262,10 @@ class StudioSession:
         with self._busy("Reading the instruction") as free:
             if not free:
                 return
+            if self.room.value == APARTMENT:
+                self.progress.content = "⏳ Planning the rooms, the floorplan and placing objects…"
+                self.apartment.generate()
+                return
             room = None if self.room.value == "infer" else self.room.value
             try:
                 graph = self.pipeline.parse(self.instruction.value, room)
@@ -287,6 +297,7 @@ class StudioSession:
             self.say(f"**Error:** {type(e).__name__}: {e}")
             return False
         with self.lock:
+            self.apartment.current = None
             if record is not None:
                 self.history.record(record, self.state.values)
             self.state.playing = False
@@ -325,6 +336,9 @@ class StudioSession:
         self._energy_curve(gen, steps)
 
     def redraw(self, labels: bool = True) -> None:
+        if self.apartment.current is not None:
+            self.apartment.draw(self._visible(), labels)
+            return
         gen = self.state.gen
         if gen is None:
             return
@@ -340,26 +354,32 @@ class StudioSession:
         if self.state.shown >= len(self.state.steps):
             return None
         placed_ids = {s.object_id for s in self.state.steps[:self.state.shown]}
-        scene = self.state.gen.scene
+        scene = self.displayed()
         return placed_ids | {c.id for o in scene.objects if o.id in placed_ids for c in o.children}
+
+    def displayed(self) -> Scene | None:
+        """The scene on screen: the generated room, or the whole apartment in the house frame."""
+        if self.apartment.current is not None:
+            return self.apartment.scene
+        return self.state.gen.scene if self.state.gen is not None else None
 
     # ---- the camera -------------------------------------------------------------------------------
 
     def set_view(self, mode: str) -> None:
         """Frame the room beside the panel ("fit"), look straight down ("top", near-orthographic) or
         stand where the VR user stands ("vr")."""
-        gen = self.state.gen
+        scene = self.displayed()
         cam = self.client.camera
-        if gen is None:
+        if scene is None:
             return
         try:
             width, height = cam.image_width, cam.image_height
         except AssertionError:  # the browser has not reported its camera yet
             return
-        room = gen.scene.room
+        room = scene.room
         self.state.view, self.state.canvas = mode, (width, height)
-        if mode == "vr" and gen.scene.vr_anchor is not None:
-            v = gen.scene.vr_anchor
+        if mode == "vr" and scene.vr_anchor is not None:
+            v = scene.vr_anchor
             position, look_at = camera.vr_view(v.x, v.z, v.rotation)
             fov = camera.VR_FOV
         elif mode == "top":
@@ -381,13 +401,13 @@ class StudioSession:
     def _camera_moved(self, cam) -> None:
         """Refit after the window is resized (the canvas size changed), keeping the current kind of view."""
         size = (cam.image_width, cam.image_height)
-        if self.state.gen is not None and self.state.canvas != (0, 0) and size != self.state.canvas:
+        if self.displayed() is not None and self.state.canvas != (0, 0) and size != self.state.canvas:
             self.set_view(self.state.view)
 
     # ---- the step animation -----------------------------------------------------------------------
 
     def animate(self, command: str) -> None:
-        if self.state.gen is None:
+        if self.displayed() is None:
             return
         if command == "Play":
             if self.state.shown >= len(self.state.steps):
@@ -426,11 +446,12 @@ class StudioSession:
             self.state.shown += 1
         if self.heat.value:
             self.view.heat_map(step)
-        scene = self.state.gen.scene
+        scene = self.displayed()
         obj = next((o for o in scene.objects if o.id == step.object_id), None)
         where = "no valid position (unplaced)" if obj is None else \
             f"x {obj.x:.2f} m, z {obj.z:.2f} m, facing {obj.rotation:.0f}°"
-        self.step_md.content = f"**Step {self.state.shown} / {len(steps)}**: placing `{step.object_id}` at {where}"
+        room = self.apartment.where(step) if self.apartment.current is not None else ""
+        self.step_md.content = f"**Step {self.state.shown} / {len(steps)}**: {room}placing `{step.object_id}` at {where}"
         if obj is None:
             return
         frames = max(2, min(8, int(20 / float(self.speed.value))))  # fewer frames when playing fast
@@ -840,7 +861,11 @@ class StudioSession:
     def download(self, kind: str) -> None:
         """The selected stored version, named after it; the scene on screen when nothing is stored."""
         sid, number = self._selected_scene(), self._selected_version()
-        if sid is not None and number is not None:
+        house, glb = to_house, to_glb
+        if self.apartment.current is not None and (sid is None or number is None):
+            scene, house, glb = self.apartment.current, apartment_house, apartment_glb
+            stem = f"{_slug(scene.task_graph.instruction)}-apartment-unsaved"
+        elif sid is not None and number is not None:
             scene = self.store.scene(sid, number)
             name = next((s["name"] for s in self.store.list_scenes() if s["id"] == sid), f"scene-{sid}")
             stem = f"{_slug(name) or f'scene-{sid}'}-v{number}"
@@ -850,10 +875,10 @@ class StudioSession:
             self.say("**Error:** Nothing to download: generate or open a scene first.")
             return
         if kind == "house":
-            self.client.send_file_download(f"{stem}-house.json", json.dumps(to_house(scene), indent=2).encode(),
+            self.client.send_file_download(f"{stem}-house.json", json.dumps(house(scene), indent=2).encode(),
                                            save_immediately=True)
         else:
-            self.client.send_file_download(f"{stem}.glb", to_glb(scene), save_immediately=True)
+            self.client.send_file_download(f"{stem}.glb", glb(scene), save_immediately=True)
         self.say(f"Downloaded `{stem}` ({'house JSON' if kind == 'house' else 'GLB'}).")
 
 

@@ -19,12 +19,13 @@ from models.exports.glb import ROLE_COLOURS
 from models.placement import PlacementStep
 from models.scene.walls import wall_boxes
 from models.shapes import shape_mesh
-from models.values import Scene, SceneObject
+from models.values import Room, Scene, SceneObject
 
 HIGHLIGHT = (255, 215, 0)
 FLOOR = (205, 195, 175)
 WALL = (236, 236, 230)
 ZONE = (80, 200, 120)
+PLAIN = {"cast_shadow": False, "receive_shadow": False}
 LABEL_GAP = 0.16  # vertical step between labels that would overlap, metres
 LABEL_NEAR = 0.9  # labels closer than this on the floor are stacked, metres
 
@@ -111,22 +112,39 @@ class SceneView:
         return handle
 
     def draw_room(self, scene: Scene) -> None:
-        room = scene.room
-        plain = {"cast_shadow": False, "receive_shadow": False}
-        self._keep(self.api.add_box("/room/floor", color=FLOOR, dimensions=(room.width, 0.02, room.depth),
-                                    position=world(room.width / 2, -0.01, room.depth / 2), **plain))
+        self.draw_shell(scene.room)
+        self.draw_markers(scene)
+
+    def draw_shell(self, room: Room, x: float = 0.0, z: float = 0.0, name: str = "/room") -> None:
+        """Floor and see-through walls of a room whose (0, 0) corner is at (x, z)."""
+        self._keep(self.api.add_box(f"{name}/floor", color=FLOOR, dimensions=(room.width, 0.02, room.depth),
+                                    position=world(x + room.width / 2, -0.01, z + room.depth / 2), **PLAIN))
         for w in wall_boxes(room):
-            self._keep(self.api.add_box(f"/room/{w.name}", color=WALL, dimensions=w.extents,
-                                        position=world(*w.centre), opacity=0.35, **plain))
+            self._keep(self.api.add_box(f"{name}/{w.name}", color=WALL, dimensions=w.extents,
+                                        position=world(w.centre[0] + x, w.centre[1], w.centre[2] + z), opacity=0.35,
+                                        **PLAIN))
+
+    def room_label(self, text: str, x: float, z: float) -> None:
+        self._keep(self.api.add_label(f"/rooms/{text}", text, position=world(x, 2.9, z), anchor="bottom-center"))
+
+    def draw_path(self, points: list[tuple[float, float]], rgb: tuple[int, int, int]) -> None:
+        """The robot's walk as a line just above the floor."""
+        if len(points) > 1:
+            p = np.array([world(x, 0.05, z) for x, z in points], np.float32)
+            self._keep(self.api.add_line_segments("/markers/path", np.stack([p[:-1], p[1:]], axis=1), colors=rgb,
+                                                  thickness=4.0, thickness_units="screen"))
+
+    def draw_markers(self, scene: Scene) -> None:
+        """The robot's start and the VR user's spot."""
         r = scene.robot_start
         self._keep(self.api.add_cylinder("/markers/robot", radius=0.2, height=0.3, color=(40, 40, 40),
-                                         position=world(r.x, 0.15, r.z), **plain,
+                                         position=world(r.x, 0.15, r.z), **PLAIN,
                                          wxyz=(math.cos(-math.pi / 4), math.sin(-math.pi / 4), 0, 0)))
         self.api.add_label("/markers/robot/label", "robot start", position=(0, 0.0, 0.3), anchor="bottom-center")
         if scene.vr_anchor is not None:
             v = scene.vr_anchor
             self._keep(self.api.add_box("/markers/vr-zone", color=ZONE, dimensions=(0.8, 0.01, 0.8), opacity=0.5,
-                                        position=world(v.x, 0.005, v.z), wxyz=yaw(v.rotation), **plain))
+                                        position=world(v.x, 0.005, v.z), wxyz=yaw(v.rotation), **PLAIN))
             self.api.add_label("/markers/vr-zone/label", "VR user", position=(0, 0.05, 0), anchor="bottom-center")
 
     def draw_objects(self, scene: Scene, visible: set[str] | None = None, labels: bool = True) -> None:

@@ -1,0 +1,112 @@
+"""The studio's apartment mode (room type "apartment"): the whole house on screen, room by room.
+
+The apartment is shown as one Scene in the house frame (every room's objects shifted by the room's
+corner), over every room's floor and walls with a label naming the room, with the robot's path through
+the doors. The placement steps come from the rooms in floorplan order, so the step animation goes room
+by room. Apartments are shown and downloaded, not edited or stored (the single-room tools stay idle).
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import replace
+
+import numpy as np
+
+from models.language import InstructionError
+from models.placement import PlacementStep
+from models.planning.apartment_planner import ApartmentError, parse_rooms
+from models.planning.floorplan import FloorplanError
+from models.scene.apartment import house_objects
+from models.values import Room, Scene
+from models.values.apartment import Apartment
+
+PATH_COLOUR = (200, 40, 160)
+
+
+def house_scene(apartment: Apartment) -> Scene:
+    """The apartment as one Scene in the house frame, its room the house's bounding rectangle."""
+    width, depth = apartment.floorplan.size
+    return Scene(id=apartment.id, room=Room(type="apartment", width=width, depth=depth),
+                 task_graph=apartment.task_graph, objects=house_objects(apartment), unplaced=apartment.unplaced,
+                 robot_start=apartment.robot_start, vr_anchor=apartment.vr_anchor, warnings=apartment.warnings)
+
+
+class ApartmentMode:
+    def __init__(self, session):
+        self.session = session
+        self.current: Apartment | None = None
+        self.scene: Scene | None = None
+
+    def generate(self) -> None:
+        """Generate an apartment from the Task tab (rooms from the Rooms field, or drawn from the task)."""
+        from frontend.session import Values, _parser_note
+        s = self.session
+        started = time.perf_counter()
+        steps: list[PlacementStep] = []
+        try:
+            rooms = parse_rooms(s.rooms.value) if s.rooms.value.strip() else None
+            apartment = s.pipeline.generate_apartment(s.instruction.value, rooms, int(s.seed.value), s.solver.value,
+                                                      s._observer(steps))
+        except (InstructionError, ApartmentError, FloorplanError) as e:
+            s.say(f"**Error:** {e}")
+            return
+        with s.lock:
+            self.current, self.scene = apartment, house_scene(apartment)
+            s.history.clear()
+            s.state.values = Values(None, tuple(self._in_house(steps)))
+            s.state.shown, s.state.playing, s.state.scene_id = len(steps), False, None
+            s.state.runs += 1
+            s.selected = None
+        s.picked.visible = False
+        s.redraw()
+        s.set_view("fit" if s.state.view != "top" else "top")
+        s.checks_md.content = ""
+        s.graph_md.content = self.summary()
+        s._draw_graph(apartment.task_graph)
+        placed = sum(len(layout.placements) for layout in apartment.layouts)
+        s.say(f"Apartment ready (#{s.state.runs}): {len(apartment.scenes)} rooms, {placed} placed, "
+              f"{len(apartment.unplaced)} unplaced ({1000 * (time.perf_counter() - started):.0f} ms)."
+              + (f"\n\n{_parser_note(apartment.task_graph)}" if apartment.task_graph.uncertain else ""))
+
+    def _in_house(self, steps: list[PlacementStep]) -> list[PlacementStep]:
+        """Each step's candidates moved from its room's frame to the house frame (for the heat-map)."""
+        offsets = {hr.id.split("|")[1]: (hr.x, hr.z) for hr in self.current.floorplan.rooms}
+        out = []
+        for step in steps:
+            x, z = offsets[step.object_id.split("-", 1)[0][1:]]
+            moved = step.candidates + np.array([x, z, 0.0]) if len(step.candidates) else step.candidates
+            out.append(replace(step, candidates=moved, x=None if step.x is None else step.x + x,
+                               z=None if step.z is None else step.z + z))
+        return out
+
+    def where(self, step: PlacementStep) -> str:
+        """The step's room, e.g. `room 2 / 4 (kitchen): `."""
+        rooms = self.current.floorplan.rooms
+        k = int(step.object_id.split("-", 1)[0][1:])
+        return f"room {k} / {len(rooms)} ({rooms[k - 1].room.type}): "
+
+    def summary(self) -> str:
+        a = self.current
+        rooms = "; ".join(f"{hr.id.split('|')[1]}. {hr.room.type} ({hr.room.width:.1f} × {hr.room.depth:.1f} m)"
+                          for hr in a.floorplan.rooms)
+        objects = ", ".join(f"{t} → {a.floorplan.room(r).room.type}" for t, r in a.plan.assignment.items())
+        nav = "n/a" if a.key_nav is None else f"{100 * a.key_nav:.0f} %"
+        return (f"**Apartment:** {rooms}\n\n**Task objects:** {objects}\n\n**Key_NAV through the doors:** {nav} "
+                f"(E_nav {a.e_nav:.2f})" + (f"; unreachable: {', '.join(a.path.unreachable)}" if a.path.unreachable
+                                           else ""))
+
+    def draw(self, visible: set[str] | None, labels: bool) -> None:
+        s, a = self.session, self.current
+        with s.client.atomic():
+            s.view.clear()
+            for hr in a.floorplan.rooms:
+                s.view.draw_shell(hr.room, hr.x, hr.z, f"/room/{hr.id.split('|')[1]}")
+                s.view.room_label(f"{hr.id.split('|')[1]}. {hr.room.type}", hr.x + hr.room.width / 2,
+                                  hr.z + hr.room.depth / 2)
+            s.view.draw_markers(self.scene)
+            s.view.draw_objects(self.scene, visible, labels)
+            s.view.draw_path(a.path.points, PATH_COLOUR)
+            shown, steps = s.state.shown, s.state.steps
+            step = steps[shown - 1] if 0 < shown <= len(steps) else None
+            s.view.heat_map(step if s.heat.value and shown < len(steps) else None)
