@@ -1,6 +1,9 @@
 """Plan2Place: the network's shapes, the losses, a resumable seeded training run, and the solver's steps."""
 
 import csv
+import hashlib
+import json
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -75,3 +78,114 @@ def test_solver_steps_are_the_policy_and_fixed_poses_are_kept():
     again = solver.solve(plan, seed=0, fixed={moved.id: pose})
     assert next((p.x, p.z, p.rotation) for p in again.placements if p.id == moved.id) == pose
     assert get_solver("plan2place_untrained").solve(plan, seed=0).placements
+
+
+# ---- speed work (issue 8, PTO): the fast paths decide exactly what the old code decided ---------------
+
+KNOWN = Path(__file__).parent / "fixtures" / "plan2place_known_layouts.json"
+
+
+def test_layouts_are_the_known_answer_of_the_code_before_the_speed_work():
+    """Poses (and every step's immediate energy) of greedy, plan2place and plan2place_untrained on 10 `seen`
+    plans x 2 seeds, recorded with the code before the speed work (commit 82c82be): the numpy network,
+    the shared per-step cache and the incremental navigation grid must not change a decision."""
+    from app.bench.placement import pick_records
+    known = json.loads(KNOWN.read_text())
+    weights = hashlib.sha256((Path(__file__).parents[1] / "models/weights/plan2place/plan2place.pt").read_bytes())
+    plans = {r.plan.id: r.plan for r in pick_records("seen", 20)}
+    assert list(known["plans"]) == [pid for pid in plans][::2]
+    for key, want in known["layouts"].items():
+        name, seed, pid = key.split("/")
+        if name == "plan2place" and weights.hexdigest() != known["weights_sha256"]:
+            continue  # new shipped weights: re-record the fixture with the code before a speed change
+        steps = []
+        layout = get_solver(name).solve(plans[pid], seed=int(seed), observer=steps.append)
+        assert sorted([p.id, p.x, p.z, p.rotation] for p in layout.placements) == want["poses"], key
+        assert sorted([u.id, u.reason] for u in layout.unplaced) == want["unplaced"], key
+        assert [round(s.terms["total"], 9) if "total" in s.terms else None for s in steps] == want["step_totals"], key
+
+
+def _observations(n_plans=4):
+    from app.bench.placement import pick_records
+    for r in pick_records("seen", n_plans):
+        ep = Episode(r.plan)
+        rng = np.random.default_rng(1)
+        while not ep.done:
+            opts = ep.options()
+            if len(opts.feasible):
+                subset = choose_subset(opts, rng)
+                yield ep, opts, subset, observe(ep, opts, subset)
+            ep.apply(opts, int(rng.integers(len(opts.feasible))) if len(opts.feasible) else None)
+
+
+def test_policy_paths_equal_the_networks_forward():
+    from models.placement.plan2place.agent import fast_policy
+    from models.placement.plan2place.solver import shipped_network
+    net = shipped_network()
+    for _, _, _, obs in _observations():
+        with torch.no_grad():
+            logits, _ = net(obs, torch.zeros(8))
+        assert torch.equal(net.policy(obs), logits)  # the SAGEConv arithmetic without its machinery: bit for bit
+        fast = fast_policy(net)(obs)  # float32 numpy: other summation orders
+        assert fast.dtype == np.float32 and np.abs(fast - logits.numpy()).max() < 1e-4
+        assert int(np.argmax(fast)) == int(torch.argmax(logits))
+
+
+def test_fast_policy_follows_weight_updates():
+    from models.placement.plan2place.agent import fast_policy
+    torch.manual_seed(0)
+    net = Plan2PlaceNet(NetConfig(hidden=32))
+    obs = next(_observations(1))[3]
+    before = fast_policy(net)(obs)
+    with torch.no_grad():
+        net.actor[2].bias += 1.0  # an in-place update, as an optimiser step makes
+    after = fast_policy(net)(obs)
+    assert np.allclose(after, before + 1.0, atol=1e-5)
+
+
+def _observe_reference(ep, opts, subset):
+    """The per-object / per-edge loops `observe` had before it was vectorised (node and edge features)."""
+    from models.placement.plan2place.features import EDGE_DIM, NODE_DIM
+    from models.placement.plan2place.type_embedding import EMBED_DIM, embed
+    room = ep.problem.plan.room
+    W, D = room.width, room.depth
+    cons = ep.problem.constraints.objects
+    obj, objs = opts.obj, ep.order
+    index = {o.id: k for k, o in enumerate(objs)}
+    pose = {p.id: p for p in ep.placed}
+    nodes = np.zeros((len(objs), NODE_DIM), np.float32)
+    for k, o in enumerate(objs):
+        p = pose.get(o.id)
+        r = np.radians(p.rotation) if p else 0.0
+        nodes[k, :10] = [o.size.x / W, o.size.z / D, p.x / W if p else 0, p.z / D if p else 0,
+                         np.sin(r) if p else 0, np.cos(r) if p else 0, p is not None, o.id == obj.id, o.is_task,
+                         ep.problem.clearance.get(o.id, 0.0)]
+        nodes[k, 10:10 + EMBED_DIM] = embed(o.type)
+    pairs = {(index[a], index[c.target]) for a, oc in cons.items() if a in index
+             for c in oc.relations if c.target in index}
+    pairs |= {(index[p.id], index[obj.id]) for p in ep.placed if p.id in index}
+    pairs = sorted(pairs | {(b, a) for a, b in pairs})
+    edges = np.array(pairs, np.int64).T.reshape(2, -1)
+    if edges.shape[1]:
+        feat = np.zeros((edges.shape[1], EDGE_DIM), np.float32)
+        for e, (a, b) in enumerate(edges.T):
+            pa, pb = pose.get(objs[a].id), pose.get(objs[b].id)
+            constrained = any(c.target == objs[b].id for c in cons[objs[a].id].relations)
+            if pa and pb:
+                dx, dz = pb.x - pa.x, pb.z - pa.z
+                dist = np.hypot(dx, dz)
+                feat[e] = [dist / np.hypot(W, D), dx / (dist + 1e-6), dz / (dist + 1e-6),
+                           abs(np.cos(np.radians(pa.rotation - pb.rotation))), constrained]
+            else:
+                feat[e, 4] = constrained
+        sums = np.zeros((len(objs), EDGE_DIM), np.float32)
+        np.add.at(sums, edges[1], feat)
+        counts = np.bincount(edges[1], minlength=len(objs))[:, None]
+        nodes[:, 10 + EMBED_DIM:] = sums / np.maximum(counts, 1)
+    return nodes, edges
+
+
+def test_vectorised_observation_equals_the_loops():
+    for ep, opts, subset, obs in _observations():
+        nodes, edges = _observe_reference(ep, opts, subset)
+        assert np.array_equal(obs.nodes, nodes) and np.array_equal(obs.edges, edges)

@@ -21,3 +21,44 @@ def test_incremental_setup_equals_a_fresh_one():
                     np.testing.assert_allclose(opts.terms[k], v, atol=1e-9, err_msg=k)
             # a random legal pick (also a collision-free but poor one) keeps the test off greedy's path
             ep.apply(opts, int(rng.integers(len(opts.feasible))) if len(opts.feasible) else None)
+
+
+def test_per_step_shortcuts_compute_the_same_numbers():
+    """The speed work's shortcuts, each against what it replaces: boxes of the candidate grid per rotation,
+    the cell ranges of an intersection as max / min of the boxes' ranges, the windowed blocked grid, and the
+    step's shared cache (soft score + energy) against a cold `CandidateEnergy.score`."""
+    from models.energy import navigation as nav
+    from models.energy.vectorised import _intersect
+    from models.geometry import boxes
+    from models.placement.candidates import grid_boxes
+    recs = load_dataset("seen", "validation")
+    rng = np.random.default_rng(0)
+    for plan in [recs[3].plan, recs[200].plan, recs[555].plan]:
+        ep = Episode(plan)
+        while not ep.done:
+            obj = ep.order[ep.i]
+            cands = ep.scorer.candidates(obj)
+            assert np.array_equal(grid_boxes(cands, obj.size.x, obj.size.z),
+                                  boxes(cands[:, 0], cands[:, 1], obj.size.x, obj.size.z, cands[:, 2]))
+            energy = ep._energy
+            cut = np.sort(rng.uniform(-0.5, max(plan.room.width, plan.room.depth) + 0.5, (200, 2, 2)), axis=1)
+            cut = cut.transpose(0, 2, 1).reshape(200, 4)[:, [0, 2, 1, 3]]  # xmin, zmin, xmax, zmax
+            for strip in energy.door_boxes + [cut[::-1]]:
+                assert np.array_equal(energy._reachable_strip(strip, energy.reach_count.cells(cut)),
+                                      energy._reachable_strip(strip, cut))
+                want = energy.reach_count.count(_intersect(np.broadcast_to(strip, cut.shape), cut))
+                c0, c1, d0, d1 = energy.reach_count.cells(cut)
+                s0, s1, t0, t1 = energy.reach_count.cells(np.asarray(strip))
+                got = energy.reach_count.count_cells(np.maximum(s0, c0), np.minimum(s1, c1), np.maximum(t0, d0),
+                                                     np.minimum(t1, d1))
+                assert np.array_equal(got, want)
+            assert np.array_equal(energy.blocked, nav.blocked_by_boxes(energy.grid, energy.bodies))
+            assert np.array_equal(energy.reach, nav.reachable_space(energy.grid, energy.blocked, plan.room))
+            opts = ep.options()
+            if len(opts.feasible):
+                cold = energy.score(opts.obj, opts.cands[opts.feasible])  # no shared cache
+                for k, v in cold.items():
+                    assert np.array_equal(opts.terms[k], v), k
+                soft = ep.scorer.soft_scores(opts.obj, opts.cands[opts.feasible], ep.placed)[0]
+                assert np.array_equal(opts.soft, soft)
+            ep.apply(opts, int(rng.integers(len(opts.feasible))) if len(opts.feasible) else None)

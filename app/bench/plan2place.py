@@ -73,3 +73,64 @@ def main(args) -> int:
         Path(args.out).mkdir(parents=True, exist_ok=True)
         (Path(args.out) / "plan2place.md").write_text(text)
     return 0
+
+
+# ---- speed: PTO of dfs, greedy and plan2place on the same plans, in one process ----------------------
+
+SPEED_SOLVERS = ("dfs", "greedy", "plan2place")
+
+
+def speed(dataset: str = "seen", n: int = 20, seeds: int = 1, solvers=SPEED_SOLVERS
+          ) -> dict[str, dict[str, list[float]]]:
+    """Wall and CPU seconds per object (solve time / plan objects) of each solver on each (plan, seed); the
+    solvers take turns plan by plan, so that a change of machine load hits them alike. One warm-up solve
+    each (weights, torch_geometric, the type embeddings and the priors load once per process) is not timed.
+    CPU time (this process) is less sensitive than wall time to other processes sharing the cores."""
+    import torch
+    torch.set_num_threads(1)
+    plans = [r.plan for r in pick_records(dataset, n)]
+    instances = {name: get_solver(name) for name in solvers}
+    for s in instances.values():
+        s.solve(plans[0], seed=0)
+    out: dict[str, dict[str, list[float]]] = {name: {"wall": [], "cpu": []} for name in solvers}
+    for seed in range(seeds):
+        for plan in plans:
+            for name, s in instances.items():
+                k = max(len(plan.objects), 1)
+                t, c = time.perf_counter(), time.process_time()
+                s.solve(plan, seed=seed)
+                out[name]["cpu"].append((time.process_time() - c) / k)
+                out[name]["wall"].append((time.perf_counter() - t) / k)
+    return out
+
+
+def speed_table(res: dict[str, dict[str, list[float]]], ref: str = "dfs") -> str:
+    lines = [f"| solver | wall p50 | wall p90 | wall mean | CPU p50 | CPU p90 | wall p50 / {ref} | CPU p50 / {ref} |",
+             "| --- | --- | --- | --- | --- | --- | --- | --- |"]
+    med = {name: {k: float(np.median(v)) for k, v in r.items()} for name, r in res.items()}
+    for name, r in res.items():
+        wall, cpu = 1000 * np.asarray(r["wall"]), 1000 * np.asarray(r["cpu"])
+        rel = [f"{med[name][k] / med[ref][k]:.2f}" if ref in med else "n/a" for k in ("wall", "cpu")]
+        lines.append(f"| {name} | {np.median(wall):.1f} | {np.percentile(wall, 90):.1f} | {wall.mean():.1f} | "
+                     f"{np.median(cpu):.1f} | {np.percentile(cpu, 90):.1f} | {rel[0]} | {rel[1]} |")
+    return "\n".join(lines) + "\n\n(ms per object: solve time / objects of the plan, over plans x seeds)"
+
+
+if __name__ == "__main__":  # python -m app.bench.plan2place --speed [--n 20] [--seeds 1]
+    import argparse
+    import os
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--speed", action="store_true", required=True)
+    ap.add_argument("--dataset", default="seen")
+    ap.add_argument("--n", type=int, default=20)
+    ap.add_argument("--seeds", type=int, default=1)
+    ap.add_argument("--solvers", default=",".join(SPEED_SOLVERS))
+    a = ap.parse_args()
+    with open("/proc/loadavg") as fh:
+        load0 = fh.read().split()[:3]
+    res = speed(a.dataset, a.n, a.seeds, [s for s in a.solvers.split(",") if s])
+    with open("/proc/loadavg") as fh:
+        load1 = fh.read().split()[:3]
+    print(f"PTO on {a.n} `{a.dataset}` plans x {a.seeds} seed(s), one process, solvers in turn per plan, "
+          f"{os.cpu_count()} CPUs, torch threads 1; loadavg before {' '.join(load0)}, after {' '.join(load1)}\n")
+    print(speed_table(res))

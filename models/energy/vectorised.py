@@ -15,13 +15,14 @@ from __future__ import annotations
 from collections.abc import Collection
 
 import numpy as np
+from scipy import ndimage
 
 from models.constraints.evaluate import Poses, box_gap, placement, relation, wall_clearance
 from models.energy import navigation as nav
 from models.energy.prior import WALL_TOUCH, relation_prior
 from models.energy.weights import ACCESS_DEPTH, AFF_BLOCKED, AFF_OUTSIDE, EPS, PRIOR_LAMBDA, ROBOT_RADIUS, WEIGHTS
 from models.geometry import SweptBoxes, boxes, overlap_many
-from models.placement.candidates import front_boxes
+from models.placement.candidates import Shared, front_boxes
 from models.placement.problem import PlacementProblem
 from models.values import PlanObject
 
@@ -38,16 +39,22 @@ class _Integral:
 
     def count(self, b: np.ndarray) -> np.ndarray:
         """b: (..., 4) boxes; cells whose centres lie inside."""
+        return self.count_cells(*self.cells(b))
+
+    def cells(self, b: np.ndarray) -> tuple[np.ndarray, ...]:
+        """The cell index range (i0, i1, j0, j1) of boxes b (..., 4), before empty ranges are closed. Each
+        index is a non-decreasing function of one coordinate, so the range of the intersection of two boxes
+        is (max i0, min i1, max j0, min j1) of theirs: exactly what `count` of the intersection computes."""
         c = self.grid.cell
         nx, nz = self.table.shape[0] - 1, self.table.shape[1] - 1
 
         def index(v, top):
             return np.minimum(np.maximum(v, 0), top).astype(np.intp)
 
-        i0 = index(np.ceil(b[..., 0] / c - 0.5 - 1e-9), nx)
-        i1 = index(np.floor(b[..., 2] / c - 0.5 + 1e-9) + 1, nx)
-        j0 = index(np.ceil(b[..., 1] / c - 0.5 - 1e-9), nz)
-        j1 = index(np.floor(b[..., 3] / c - 0.5 + 1e-9) + 1, nz)
+        return (index(np.ceil(b[..., 0] / c - 0.5 - 1e-9), nx), index(np.floor(b[..., 2] / c - 0.5 + 1e-9) + 1, nx),
+                index(np.ceil(b[..., 1] / c - 0.5 - 1e-9), nz), index(np.floor(b[..., 3] / c - 0.5 + 1e-9) + 1, nz))
+
+    def count_cells(self, i0, i1, j0, j1) -> np.ndarray:
         i1, j1 = np.maximum(i1, i0), np.maximum(j1, j0)
         t = self.table
         return t[i1, j1] - t[i0, j1] - t[i1, j0] + t[i0, j0]
@@ -87,8 +94,12 @@ class CandidateEnergy:
         self.room_box = np.array([0.0, 0.0, w, d])
         self._constant_terms()
         self.grid = nav.Grid(w, d)
+        self.mesh = self.grid.mesh()
+        self.start = np.zeros(self.mesh[0].shape, bool)  # the doorway cells reachable_space starts from
+        for b in nav.door_boxes(self.room):
+            self.start |= nav.in_box_mask(self.grid, b)
         self.blocked = nav.blocked_by_boxes(self.grid, self.bodies)
-        self.reach = nav.reachable_space(self.grid, self.blocked, self.room)
+        self.reach = self._reachable(self.blocked)
         self.reach_count = _Integral(self.grid, self.reach)
         self.door_boxes = [np.array(b, float) for b in nav.door_boxes(self.room)]
 
@@ -143,10 +154,33 @@ class CandidateEnergy:
                 aff += AFF_BLOCKED * (overlap_many(z[None], body)[0, 0] > OVERLAP_TOL)
         new.aff_sum = aff
 
-        new.blocked = self.blocked | nav.blocked_by_boxes(self.grid, body)
-        new.reach = nav.reachable_space(self.grid, new.blocked, room)
+        new.blocked = self._blocked_with(body[0])
+        new.reach = new._reachable(new.blocked)
         new.reach_count = _Integral(self.grid, new.reach)
         return new
+
+    def _blocked_with(self, b: np.ndarray) -> np.ndarray:
+        """`self.blocked | navigation.blocked_by_boxes(grid, [b])`, evaluated only on the cells near b (the
+        walls are in self.blocked already; farther cells are more than the robot's radius away)."""
+        gx, gz = self.mesh
+        xs, zs = gx[:, 0], gz[0]
+        margin = ROBOT_RADIUS + self.grid.cell
+        i0, i1 = np.searchsorted(xs, b[0] - margin), np.searchsorted(xs, b[2] + margin, side="right")
+        j0, j1 = np.searchsorted(zs, b[1] - margin), np.searchsorted(zs, b[3] + margin, side="right")
+        wx, wz = gx[i0:i1, j0:j1], gz[i0:i1, j0:j1]
+        dx = np.maximum(0, np.maximum(b[0] - wx, wx - b[2]))
+        dz = np.maximum(0, np.maximum(b[1] - wz, wz - b[3]))
+        out = self.blocked.copy()
+        out[i0:i1, j0:j1] |= dx * dx + dz * dz <= ROBOT_RADIUS * ROBOT_RADIUS + 1e-12
+        return out
+
+    def _reachable(self, blocked: np.ndarray) -> np.ndarray:
+        """`navigation.reachable_space` with the doorway cells computed once per room."""
+        labels, n = ndimage.label(~blocked)
+        ids = np.unique(labels[self.start & ~blocked])
+        keep = np.zeros(n + 1, bool)
+        keep[ids[ids > 0]] = True
+        return keep[labels]
 
     # ---- what the placed objects contribute whatever the candidate --------------------------------
 
@@ -178,9 +212,13 @@ class CandidateEnergy:
                     aff_sum += AFF_BLOCKED * (overlap_many(zone[None], self.bodies[j:j + 1])[0, 0] > OVERLAP_TOL)
         self.aff_sum = aff_sum
 
-    def _rel(self, name, a_id, b_id, a: Poses, b: Poses) -> np.ndarray:
-        g = box_gap(a, b)
-        e, _ = relation(name, a, b, gap=g)
+    def _rel(self, name, a_id, b_id, a: Poses, b: Poses, known: tuple | None = None) -> np.ndarray:
+        """`known`: (energy, gap) of the relation as soft_scores computed it for the same poses."""
+        if known is not None:
+            e, g = known
+        else:
+            g = box_gap(a, b)
+            e, _ = relation(name, a, b, gap=g)
         pe = self.prior.pair_energy(self.room.type, self.types[a_id], self.types[b_id], g, a.rotation - b.rotation)
         return e * (1 + PRIOR_LAMBDA * pe)
 
@@ -190,23 +228,34 @@ class CandidateEnergy:
 
     # ---- per candidate -----------------------------------------------------------------------------
 
-    def score(self, obj: PlanObject, cands: np.ndarray, nav_mode: str = "fast") -> dict[str, np.ndarray]:
-        """Energy terms and weighted total for every candidate (N, 3: x, z, rotation)."""
+    def score(self, obj: PlanObject, cands: np.ndarray, nav_mode: str = "fast", shared: Shared | None = None
+              ) -> dict[str, np.ndarray]:
+        """Energy terms and weighted total for every candidate (N, 3: x, z, rotation).
+
+        `shared` (Episode.options): the step's cache of what the soft score and the hard filter already
+        computed for these candidates (poses and boxes, wall clearance, placement and relation energies,
+        squared overlaps with the placed bodies, whether the strict filter passed); the result is the same."""
         room = self.room
         x, z, rot = cands[:, 0], cands[:, 1], cands[:, 2]
-        poses = Poses(x, z, rot, obj.size.x, obj.size.z)
+        poses = shared.poses if shared is not None else Poses(x, z, rot, obj.size.x, obj.size.z)
         body = poses.boxes()
         n = len(cands)
 
         # relational: the candidate's own placement and relations, and placed objects' relations to it
         oc = self.problem.constraints.objects[obj.id]
-        e, _ = placement(oc.placement, poses, room.width, room.depth)
-        touching = wall_clearance(poses, room.width, room.depth) <= WALL_TOUCH
+        if shared is not None:
+            e = shared.placement_energy(oc.placement, room.width, room.depth)
+            clearance = shared.wall_clearance(room.width, room.depth)
+        else:
+            e, _ = placement(oc.placement, poses, room.width, room.depth)
+            clearance = wall_clearance(poses, room.width, room.depth)
+        touching = clearance <= WALL_TOUCH
         rel_sum = self.rel_sum + e * (1 + PRIOR_LAMBDA * self.prior.wall_energy(room.type, obj.type, touching))
         rel_n = self.rel_n + 1
-        for c in oc.relations:
+        for i, c in enumerate(oc.relations):
             if c.target in self.poses:
-                rel_sum = rel_sum + self._rel(c.name, obj.id, c.target, poses, self.poses[c.target])
+                known = shared.relations.get((i, c.target)) if shared is not None else None
+                rel_sum = rel_sum + self._rel(c.name, obj.id, c.target, poses, self.poses[c.target], known)
                 rel_n += 1
         for p in self.placed:
             for c in self.problem.constraints.objects[p.id].relations:
@@ -216,10 +265,14 @@ class CandidateEnergy:
         rel = np.log1p(rel_sum / rel_n)
 
         # collision and out-of-bounds
-        swept = SweptBoxes(body)
-        squared = np.zeros(n)
-        for idx, area in swept.overlaps(self.bodies):
-            squared[idx] += area ** 2
+        swept = None
+        if shared is not None and shared.collision is not None:
+            squared = shared.collision
+        else:
+            swept = SweptBoxes(body)
+            squared = np.zeros(n)
+            for idx, area in swept.overlaps(self.bodies):
+                squared[idx] += area ** 2
         collision = np.log1p(self.collision_sum + squared)
         area = (body[:, 2] - body[:, 0]) * (body[:, 3] - body[:, 1])
         inside = overlap_many(body, self.room_box[None])[:, 0]
@@ -228,17 +281,20 @@ class CandidateEnergy:
         # affordance: placed objects whose clearance the candidate blocks, and the candidate's own
         aff_sum = np.full(n, self.aff_sum)
         functional = len(self.zones)
-        open_zones = [zone for oid, zone in self.zones.items() if not self.problem.constraints.tied(oid, obj.id)]
-        for idx, area in swept.overlaps(np.array(open_zones).reshape(-1, 4)):
-            aff_sum[idx[area > OVERLAP_TOL]] += AFF_BLOCKED
         depth = self.problem.clearance.get(obj.id, 0.0)
         if depth > 0:
             functional += 1
-            zone = front_boxes(x, z, rot, obj.size.x, obj.size.z, depth)
-            aff_sum += AFF_OUTSIDE * self._outside(zone)
-            free = [b for b, p in zip(self.bodies, self.placed) if not self.problem.constraints.tied(obj.id, p.id)]
-            for idx, area in SweptBoxes(zone).overlaps(np.array(free).reshape(-1, 4)):
+        if shared is None or not shared.zones_clear:  # else: every term below adds nothing (strict filter)
+            swept = swept or SweptBoxes(body)
+            open_zones = [zone for oid, zone in self.zones.items() if not self.problem.constraints.tied(oid, obj.id)]
+            for idx, area in swept.overlaps(np.array(open_zones).reshape(-1, 4)):
                 aff_sum[idx[area > OVERLAP_TOL]] += AFF_BLOCKED
+            if depth > 0:
+                zone = front_boxes(x, z, rot, obj.size.x, obj.size.z, depth)
+                aff_sum += AFF_OUTSIDE * self._outside(zone)
+                free = [b for b, p in zip(self.bodies, self.placed) if not self.problem.constraints.tied(obj.id, p.id)]
+                for idx, area in SweptBoxes(zone).overlaps(np.array(free).reshape(-1, 4)):
+                    aff_sum[idx[area > OVERLAP_TOL]] += AFF_BLOCKED
         aff = aff_sum / max(functional, 1)
 
         nav_e = self._navigation(obj, cands, body) if nav_mode == "fast" else self._navigation_exact(obj, cands, body)
@@ -247,10 +303,16 @@ class CandidateEnergy:
         terms["total"] = sum(WEIGHTS[k] * terms[k] for k in WEIGHTS)
         return terms
 
-    def _reachable_strip(self, strip: np.ndarray, cut: np.ndarray) -> np.ndarray:
-        """Does `strip` (4,) or (N, 4) hold a reachable cell outside the candidate's inflated body `cut` (N, 4)?"""
-        total = self.reach_count.count(strip)
-        return (total - self.reach_count.count(_intersect(np.broadcast_to(strip, cut.shape), cut))) > 0
+    def _reachable_strip(self, strip: np.ndarray, cut: np.ndarray | tuple) -> np.ndarray:
+        """Does `strip` (4,) or (N, 4) hold a reachable cell outside the candidate's inflated body `cut` (N, 4)?
+        `cut` may be given as its cell ranges (`_Integral.cells`), computed once for all strips."""
+        rc = self.reach_count
+        if not isinstance(cut, tuple):
+            return (rc.count(strip) - rc.count(_intersect(np.broadcast_to(strip, cut.shape), cut))) > 0
+        s0, s1, t0, t1 = rc.cells(np.asarray(strip))
+        c0, c1, d0, d1 = cut
+        inter = rc.count_cells(np.maximum(s0, c0), np.minimum(s1, c1), np.maximum(t0, d0), np.minimum(t1, d1))
+        return (rc.count_cells(s0, s1, t0, t1) - inter) > 0
 
     def _missing(self, obj: PlanObject) -> list[str]:
         """Plan objects neither placed, nor the candidate, nor pending."""
@@ -269,7 +331,7 @@ class CandidateEnergy:
         targets, is_target, n_targets = self._targets(obj)
         if n_targets == 0:
             return np.zeros(len(cands))
-        cut = _inflate(body, ROBOT_RADIUS)
+        cut = self.reach_count.cells(_inflate(body, ROBOT_RADIUS))
         door_open = np.zeros(len(cands), bool)
         for db in self.door_boxes:
             door_open |= self._reachable_strip(db, cut)

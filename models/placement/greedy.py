@@ -16,8 +16,9 @@ import numpy as np
 from models.energy.vectorised import CandidateEnergy
 from models.energy.weights import WEIGHTS
 from models.placement.base import Fixed, PlacementStep, StepObserver
-from models.geometry import SweptBoxes, boxes
-from models.placement.candidates import OVERLAP_TOL, CandidateScorer, PlacedObject, front_boxes
+from models.geometry import SweptBoxes
+from models.placement.candidates import (OVERLAP_TOL, CandidateScorer, PlacedObject, Shared, front_boxes,
+                                         grid_boxes)
 from models.placement.problem import PlacementProblem
 from models.placement.result import make_layout
 from models.values import ConstraintPlan, Layout, PlanObject
@@ -41,19 +42,30 @@ def legal(scorer: CandidateScorer, obj: PlanObject, placed: list[PlacedObject], 
     """(candidates, mask of those passing the hard filters): the same rules as `CandidateScorer.evaluate`
     (tested), with a sweep-and-prune broad phase instead of an all-pairs overlap matrix."""
     cands = scorer.candidates(obj)
-    ok = np.ones(len(cands), bool)
-    if not len(cands):
-        return cands, ok
-    x, z, rot = cands[:, 0], cands[:, 1], cands[:, 2]
-    body = SweptBoxes(boxes(x, z, obj.size.x, obj.size.z, rot))
+    body = grid_boxes(cands, obj.size.x, obj.size.z)
+    ok, _ = hard_filter(scorer, obj, placed, cands, body, SweptBoxes(body), strict)
+    return cands, ok
 
-    def clear_of(swept: SweptBoxes, others) -> None:
+
+def hard_filter(scorer: CandidateScorer, obj: PlanObject, placed: list[PlacedObject], cands: np.ndarray,
+                body: np.ndarray, swept: SweptBoxes, strict: bool = True) -> tuple[np.ndarray, np.ndarray]:
+    """(mask of the candidates passing the hard filters, squared overlap areas with the placed bodies summed
+    in placed order: the collision term the vectorised energy computes for the same candidates)."""
+    ok = np.ones(len(cands), bool)
+    squared = np.zeros(len(cands))
+    if not len(cands):
+        return ok, squared
+
+    def clear_of(swept: SweptBoxes, others, sq=None) -> None:
         for idx, area in swept.overlaps(np.asarray(others, float).reshape(-1, 4)):
             ok[idx[area > OVERLAP_TOL]] = False
+            if sq is not None:
+                sq[idx] += area ** 2
 
-    clear_of(body, [p.body for p in placed])
-    clear_of(body, scorer.door_zones)
+    clear_of(swept, [p.body for p in placed], squared)
+    clear_of(swept, scorer.door_zones)
     if strict:
+        x, z, rot = cands[:, 0], cands[:, 1], cands[:, 2]
         problem = scorer.problem
         clearance = problem.clearance.get(obj.id, 0.0)
         free = [p for p in placed if not problem.constraints.tied(obj.id, p.id)]
@@ -62,8 +74,8 @@ def legal(scorer: CandidateScorer, obj: PlanObject, placed: list[PlacedObject], 
             ok &= (front[:, 0] >= -1e-6) & (front[:, 1] >= -1e-6) & \
                 (front[:, 2] <= scorer.width + 1e-6) & (front[:, 3] <= scorer.depth + 1e-6)
             clear_of(SweptBoxes(front), [p.body for p in free])
-        clear_of(body, [p.front for p in free if p.front is not None])
-    return cands, ok
+        clear_of(swept, [p.front for p in free if p.front is not None])
+    return ok, squared
 
 
 class Episode:
@@ -94,13 +106,24 @@ class Episode:
             cands = np.array([self.problem.fixed[obj.id]], float)
             soft = np.zeros(1)
             feasible = np.array([0])
-        else:
-            cands, ok = legal(self.scorer, obj, self.placed, strict=True)
-            if not ok.any():  # relax the front-clearance rules before giving up
-                cands, ok = legal(self.scorer, obj, self.placed, strict=False)
-            feasible = np.flatnonzero(ok)
-            soft = self.scorer.soft_scores(obj, cands[feasible], self.placed)[0] if len(feasible) else np.zeros(0)
-        terms = self._energy.score(obj, cands[feasible]) if len(feasible) else {}
+            terms = self._energy.score(obj, cands)
+            return Options(obj, cands, feasible, terms, soft)
+        # the candidates' boxes and their sweep structure serve the hard filter, the soft score and the energy
+        cands = self.scorer.candidates(obj)
+        body = grid_boxes(cands, obj.size.x, obj.size.z)
+        swept = SweptBoxes(body)
+        strict = True
+        ok, squared = hard_filter(self.scorer, obj, self.placed, cands, body, swept, strict=True)
+        if not ok.any():  # relax the front-clearance rules before giving up
+            strict = False
+            ok, squared = hard_filter(self.scorer, obj, self.placed, cands, body, swept, strict=False)
+        feasible = np.flatnonzero(ok)
+        if not len(feasible):
+            return Options(obj, cands, feasible, {}, np.zeros(0))
+        shared = Shared.of(cands[feasible], obj, body[feasible])
+        shared.collision, shared.zones_clear = squared[feasible], strict
+        soft = self.scorer.soft_scores(obj, cands[feasible], self.placed, shared)[0]
+        terms = self._energy.score(obj, cands[feasible], shared=shared)
         return Options(obj, cands, feasible, terms, soft)
 
     def apply(self, opts: Options, pick: int | None) -> float:

@@ -20,7 +20,7 @@ import torch
 
 from models.placement.greedy import Episode
 from models.placement.plan2place.features import choose_subset, observe
-from models.placement.plan2place.network import NetConfig, Plan2PlaceNet
+from models.placement.plan2place.network import NetConfig, NumpyPolicy, Plan2PlaceNet
 from models.semantic import default_scorer, items_of
 
 W_POLICY, W_VALUE, W_AUX, W_ENTROPY = 1.0, 0.5, 0.1, 0.01
@@ -51,9 +51,13 @@ def semantic_of(ep: Episode) -> tuple[torch.Tensor, float]:
 
 def rollout(net: Plan2PlaceNet, plan, rng: np.random.Generator, sample: bool, use_global: bool = True,
             fixed=None, observer=None, grad: bool = False) -> tuple[Episode, list[dict]]:
-    """One episode; `sample`: draw actions from the policy (training), else take the most probable."""
+    """One episode; `sample`: draw actions from the policy (training), else take the most probable.
+
+    Deterministic and without gradients (the solver), the step needs neither the critic nor the semantic
+    scorer that feeds it: only the actor's logits, from `fast_policy` (float32 numpy, same decisions)."""
     ep = Episode(plan, fixed)
     trace = []
+    policy = fast_policy(net) if not (grad or sample) else None
     while not ep.done:
         opts = ep.options()
         pick, probs_all = None, np.zeros(len(opts.feasible))
@@ -62,21 +66,41 @@ def rollout(net: Plan2PlaceNet, plan, rng: np.random.Generator, sample: bool, us
         elif len(opts.feasible):
             subset = choose_subset(opts, rng)
             obs = observe(ep, opts, subset, use_global)
-            sem, r_vlm = semantic_of(ep) if net.cfg.sff or grad else (None, 0.0)
-            with torch.set_grad_enabled(grad):
-                logits, value = net(obs, sem)
-            dist = torch.distributions.Categorical(logits=logits)
-            a = int(dist.sample()) if sample else int(torch.argmax(logits))
+            if policy is not None:
+                logits = policy(obs)
+                a = int(np.argmax(logits))
+                p = np.exp(logits - logits[a])
+                probs_all[subset] = p / p.sum()
+                trace.append({"reward": 0.0})
+            else:
+                sem, r_vlm = semantic_of(ep) if net.cfg.sff or grad else (None, 0.0)
+                with torch.set_grad_enabled(grad):
+                    logits, value = net(obs, sem)
+                dist = torch.distributions.Categorical(logits=logits)
+                a = int(dist.sample()) if sample else int(torch.argmax(logits))
+                probs_all[subset] = torch.softmax(logits.detach(), 0).numpy()
+                trace.append({"logp": dist.log_prob(torch.tensor(a)), "entropy": dist.entropy(), "value": value,
+                              "r_vlm": r_vlm, "reward": 0.0})
             pick = int(subset[a])
-            probs_all[subset] = torch.softmax(logits.detach(), 0).numpy()
-            trace.append({"logp": dist.log_prob(torch.tensor(a)), "entropy": dist.entropy(), "value": value,
-                          "r_vlm": r_vlm, "reward": 0.0})
         reward = ep.apply(opts, pick)
         if trace:  # a fixed or failed step after a decision: its energy change counts for that decision
             trace[-1]["reward"] += reward
         if observer is not None:
             observer(ep.step_record(opts, pick, probs_all))
     return ep, trace
+
+
+def fast_policy(net: Plan2PlaceNet):
+    """obs -> logits (numpy) for inference: `NumpyPolicy` of the network's current weights (rebuilt when they
+    change, e.g. by an optimiser step), or the torch actor for fusions it does not implement."""
+    if net.cfg.fusion != "cross":
+        return lambda obs: net.policy(obs).numpy()
+    version = tuple(p._version for p in net.parameters())
+    cached = getattr(net, "_numpy_policy", None)
+    if cached is None or cached[0] != version:
+        cached = (version, NumpyPolicy(net))
+        net._numpy_policy = cached
+    return cached[1]
 
 
 def losses(trace: list[dict], aux: bool) -> dict[str, torch.Tensor]:

@@ -48,50 +48,78 @@ def choose_subset(opts: Options, rng: np.random.Generator) -> np.ndarray:
     return np.concatenate([top, extra]).astype(np.int64)
 
 
+class _Static:
+    """What `observe` needs that does not change during an episode (the plan's objects, their order and
+    constraints): node features that do not depend on poses, the constraint pairs and their flags."""
+
+    def __init__(self, ep: Episode):
+        plan, room = ep.problem.plan, ep.problem.plan.room
+        cons = ep.problem.constraints.objects
+        objs = ep.order
+        self.W, self.D = room.width, room.depth
+        self.n_rel = sum(len(c.relations) for c in cons.values())
+        self.n_plan = max(len(plan.objects), 1)
+        self.index = {o.id: k for k, o in enumerate(objs)}
+        nodes = np.zeros((len(objs), NODE_DIM), np.float32)
+        for k, o in enumerate(objs):
+            nodes[k, [0, 1, 8, 9]] = [o.size.x / self.W, o.size.z / self.D, o.is_task, ep.problem.clearance.get(o.id, 0.0)]
+            nodes[k, 10:10 + EMBED_DIM] = embed(o.type)
+        self.nodes = nodes
+        index = self.index
+        self.pairs = {(index[a], index[c.target]) for a, oc in cons.items() if a in index
+                      for c in oc.relations if c.target in index}
+        self.constrained = np.zeros((len(objs), len(objs)), bool)  # a has a relation to b
+        for a, b in self.pairs:
+            self.constrained[a, b] = True
+
+
 def observe(ep: Episode, opts: Options, subset: np.ndarray, use_global: bool = True) -> Observation:
-    plan, room = ep.problem.plan, ep.problem.plan.room
-    W, D, area = room.width, room.depth, room.width * room.depth
+    st = ep.__dict__.get("_observe_static")
+    if st is None:
+        st = ep.__dict__["_observe_static"] = _Static(ep)
+    W, D = st.W, st.D
+    area = W * D
     cons = ep.problem.constraints.objects
     obj = opts.obj
-    n_rel = sum(len(c.relations) for c in cons.values())
     occupied = sum(p.width * p.depth for p in ep.placed)
-    glob = np.array([len(cons[obj.id].relations) / 4, n_rel / max(len(plan.objects), 1) / 4,
+    glob = np.array([len(cons[obj.id].relations) / 4, st.n_rel / st.n_plan / 4,
                      obj.size.x * obj.size.z / area, (len(ep.order) - ep.i) / max(len(ep.order), 1),
                      occupied / area], np.float32)
     if not use_global:
         glob = np.zeros_like(glob)
 
-    objs = ep.order
-    index = {o.id: k for k, o in enumerate(objs)}
-    pose = {p.id: p for p in ep.placed}
-    nodes = np.zeros((len(objs), NODE_DIM), np.float32)
-    for k, o in enumerate(objs):
-        p = pose.get(o.id)
-        r = np.radians(p.rotation) if p else 0.0
-        nodes[k, :10] = [o.size.x / W, o.size.z / D, p.x / W if p else 0, p.z / D if p else 0,
-                         np.sin(r) if p else 0, np.cos(r) if p else 0, p is not None, o.id == obj.id, o.is_task,
-                         ep.problem.clearance.get(o.id, 0.0)]
-        nodes[k, 10:10 + EMBED_DIM] = embed(o.type)
-    pairs = {(index[a], index[c.target]) for a, oc in cons.items() if a in index
-             for c in oc.relations if c.target in index}
-    pairs |= {(index[p.id], index[obj.id]) for p in ep.placed if p.id in index}
+    n = len(ep.order)
+    index = st.index
+    placed = [p for p in ep.placed if p.id in index]
+    rows = np.array([index[p.id] for p in placed], np.intp)
+    px, pz, prot = np.zeros(n), np.zeros(n), np.zeros(n)  # poses of the placed nodes (0 for the others)
+    is_placed = np.zeros(n, bool)
+    if len(placed):
+        px[rows], pz[rows] = [p.x for p in placed], [p.z for p in placed]
+        prot[rows] = [p.rotation for p in placed]
+        is_placed[rows] = True
+    nodes = st.nodes.copy()
+    r = np.radians(prot[rows])
+    nodes[rows, 2], nodes[rows, 3] = px[rows] / W, pz[rows] / D
+    nodes[rows, 4], nodes[rows, 5], nodes[rows, 6] = np.sin(r), np.cos(r), 1.0
+    nodes[index[obj.id], 7] = 1.0
+    nxt = index[obj.id]
+    pairs = st.pairs | {(int(a), nxt) for a in rows}
     pairs = sorted(pairs | {(b, a) for a, b in pairs})
     edges = np.array(pairs, np.int64).T.reshape(2, -1)
     if edges.shape[1]:
+        a, b = edges
         feat = np.zeros((edges.shape[1], EDGE_DIM), np.float32)
-        for e, (a, b) in enumerate(edges.T):
-            pa, pb = pose.get(objs[a].id), pose.get(objs[b].id)
-            constrained = any(c.target == objs[b].id for c in cons[objs[a].id].relations)
-            if pa and pb:
-                dx, dz = pb.x - pa.x, pb.z - pa.z
-                dist = np.hypot(dx, dz)
-                feat[e] = [dist / np.hypot(W, D), dx / (dist + 1e-6), dz / (dist + 1e-6),
-                           abs(np.cos(np.radians(pa.rotation - pb.rotation))), constrained]
-            else:
-                feat[e, 4] = constrained
-        sums = np.zeros((len(objs), EDGE_DIM), np.float32)
-        np.add.at(sums, edges[1], feat)
-        counts = np.bincount(edges[1], minlength=len(objs))[:, None]
+        both = is_placed[a] & is_placed[b]
+        dx, dz = px[b[both]] - px[a[both]], pz[b[both]] - pz[a[both]]
+        dist = np.hypot(dx, dz)
+        feat[both, 0] = dist / np.hypot(W, D)
+        feat[both, 1], feat[both, 2] = dx / (dist + 1e-6), dz / (dist + 1e-6)
+        feat[both, 3] = np.abs(np.cos(np.radians(prot[a[both]] - prot[b[both]])))
+        feat[:, 4] = st.constrained[a, b]
+        sums = np.zeros((n, EDGE_DIM), np.float32)
+        np.add.at(sums, b, feat)
+        counts = np.bincount(b, minlength=n)[:, None]
         nodes[:, 10 + EMBED_DIM:] = sums / np.maximum(counts, 1)
 
     c = opts.cands[opts.feasible[subset]]
