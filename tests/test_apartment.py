@@ -255,7 +255,8 @@ def test_cli_bad_apartments_exit_2_with_one_line(tmp_path, rooms, message):
 def test_write_apartment_files_and_glb(flat, tmp_path):
     from app.cli import load_plan
     paths = write_apartment(flat, tmp_path)
-    assert {"task_graph.json", "floorplan.json", "navigation.json", "house.json", "scene.glb"} <= {p.name for p in paths}
+    names = {p.name for p in paths}
+    assert {"task_graph.json", "floorplan.json", "navigation.json", "house.json", "scene.glb"} <= names
     for hr in flat.floorplan.rooms:
         folder = tmp_path / "rooms" / f"{hr.id.split('|')[1]}-{hr.room.type.replace(' ', '-')}"
         assert load_plan(str(folder / "plan.json")).room == hr.room
@@ -286,7 +287,8 @@ def test_api_generates_an_apartment_and_names_bad_rooms(tmp_path):
     from app.api import create_app
     from studio_db import Store
     client = TestClient(create_app(Store(f"sqlite:///{tmp_path / 'studio.db'}")))
-    ok = client.post("/generate", json={"instruction": BREAD, "room_type": "apartment", "rooms": ["kitchen", "bedroom"]})
+    ok = client.post("/generate", json={"instruction": BREAD, "room_type": "apartment",
+                                        "rooms": ["kitchen", "bedroom"]})
     assert ok.status_code == 200
     body = ok.json()
     assert len(body["house"]["rooms"]) == 2 and body["apartment"]["plan"]["assignment"]["Fridge"] == "room|1"

@@ -115,8 +115,9 @@ def house_navigation(floorplan: Floorplan, objects: dict[str, Footprint], target
     gx, gz = grid.mesh()
     graph = _grid_graph(reachable)
     near = np.flatnonzero((_start_cells(grid, blocked, start) & reachable).ravel())
+    gap = (gx.ravel()[near] - start[0]) ** 2 + (gz.ravel()[near] - start[1]) ** 2
+    here = int(near[np.argmin(gap)]) if len(near) else None
     points, visits, missed = [start], [], []
-    here = int(min(near, key=lambda c: (gx.flat[c] - start[0]) ** 2 + (gz.flat[c] - start[1]) ** 2)) if len(near) else None
     for oid in targets:
         f = objects.get(oid)
         cells = None
