@@ -3,7 +3,8 @@
 The apartment is shown as one Scene in the house frame (every room's objects shifted by the room's
 corner), over every room's floor and walls with a label naming the room, with the robot's path through
 the doors. The placement steps come from the rooms in floorplan order, so the step animation goes room
-by room. Apartments are shown and downloaded, not edited or stored (the single-room tools stay idle).
+by room. Apartments are shown, inspected (a click picks an object) and downloaded, not edited or
+stored (the single-room editing tools stay idle).
 """
 
 from __future__ import annotations

@@ -531,19 +531,20 @@ class StudioSession:
     # ---- picking and moving -----------------------------------------------------------------------
 
     def pick(self, object_id: str | None) -> None:
-        """Select an object (a click on it): highlighted, its panel above the tabs, the gizmo on its top."""
-        gen = self.state.gen
-        if gen is None:
+        """Select an object (a click on it): highlighted, its panel above the tabs, the gizmo on its top
+        (in an apartment: highlighted and described only)."""
+        scene, gen = self.displayed(), self.state.gen
+        if scene is None:
             return
-        obj = next((o for o in gen.scene.all_objects() if o.id == object_id), None)
+        obj = next((o for o in scene.all_objects() if o.id == object_id), None)
         self.selected = obj.id if obj is not None else None
-        self.view.select(self.selected, gen.scene)
+        self.view.select(self.selected, scene)
         self.picked.visible = obj is not None
         if obj is None:
             self._place_controls()
             return
         self._show_picked(obj)
-        if obj.id in {o.id for o in gen.plan.objects}:
+        if gen is not None and obj.id in {o.id for o in gen.plan.objects}:
             self.c_object.value = obj.id
             self.show_constraints()
         self._place_controls()
@@ -772,6 +773,9 @@ class StudioSession:
 
     def accept(self) -> None:
         gen = self.state.gen
+        if self.apartment.current is not None:
+            self.say("**Error:** Apartments cannot be stored yet; download the house JSON or GLB instead.")
+            return
         if gen is None:
             self.say("**Error:** Nothing to save yet: generate a scene first.")
             return

@@ -33,6 +33,12 @@ def test_apartment_in_the_studio(browser, studio):  # noqa: F811
     page.wait_for_timeout(1500)
     page.screenshot(path=str(SCREENSHOTS / "apartment-top.png"))  # the README's picture (docs/apartment-studio.png)
 
+    fridge = next(o.id for o in session.displayed().objects if o.type == "Fridge")
+    session.pick(fridge)  # inspected, not movable: no drag gizmo
+    assert session.picked.visible and fridge in session.picked_md.content and session.controls is None
+    session.accept()
+    assert "cannot be stored" in session.status.content
+
     session.animate("Step")  # from the start: the first room's first object
     assert "room 1 / 3 (kitchen)" in session.step_md.content
     rooms_in_order = []
