@@ -451,7 +451,8 @@ class StudioSession:
         where = "no valid position (unplaced)" if obj is None else \
             f"x {obj.x:.2f} m, z {obj.z:.2f} m, facing {obj.rotation:.0f}°"
         room = self.apartment.where(step) if self.apartment.current is not None else ""
-        self.step_md.content = f"**Step {self.state.shown} / {len(steps)}**: {room}placing `{step.object_id}` at {where}"
+        self.step_md.content = (f"**Step {self.state.shown} / {len(steps)}**: {room}placing `{step.object_id}` "
+                                f"at {where}")
         if obj is None:
             return
         frames = max(2, min(8, int(20 / float(self.speed.value))))  # fewer frames when playing fast
