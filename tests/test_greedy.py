@@ -64,3 +64,31 @@ def test_fast_hard_filter_is_candidate_scorers():
                 assert (ok == np.isfinite(scores)).all()
             opts = ep.options()
             ep.apply(opts, int(rng.integers(len(opts.feasible))) if len(opts.feasible) else None)
+
+
+def test_candidate_grid_is_the_meshgrid_of_unique_axes():
+    """CandidateScorer.grid builds the candidates without np.unique / meshgrid: the same array as before."""
+    from models.placement.candidates import ROTATIONS, CandidateScorer
+
+    def axis(step, half, length):
+        if 2 * half > length + 1e-9:
+            return np.empty(0)
+        return np.unique(np.round(np.concatenate([np.arange(half, length - half, step), [length - half]]), 4))
+
+    for plan in _plans(6):
+        scorer = CandidateScorer(PlacementProblem.from_plan(plan))
+        for obj in plan.objects:
+            parts = []
+            for rot in ROTATIONS:
+                hx, hz = (obj.size.x / 2, obj.size.z / 2) if rot in (0.0, 180.0) else (obj.size.z / 2, obj.size.x / 2)
+                xs, zs = axis(scorer.step, hx, scorer.width), axis(scorer.step, hz, scorer.depth)
+                if len(xs) and len(zs):
+                    gx, gz = np.meshgrid(xs, zs, indexing="ij")
+                    parts.append(np.stack([gx.ravel(), gz.ravel(), np.full(gx.size, rot)], axis=1))
+            want = np.concatenate(parts) if parts else np.empty((0, 3))
+            assert np.array_equal(scorer.candidates(obj), want)
+    rng = np.random.default_rng(0)
+    scorer = CandidateScorer(PlacementProblem.from_plan(_plans(1)[0]))
+    for _ in range(20000):  # odd sizes and rooms, where the last grid step meets the far wall
+        half, length = round(rng.uniform(0.05, 2.0), int(rng.integers(1, 6))), round(rng.uniform(0.5, 8), int(rng.integers(1, 6)))
+        assert np.array_equal(scorer._axis(half, length), axis(scorer.step, half, length))

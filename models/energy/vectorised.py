@@ -12,6 +12,7 @@ candidate that cuts the free space in two elsewhere. `exact` labels the free spa
 
 from __future__ import annotations
 
+import math
 from collections.abc import Collection
 
 import numpy as np
@@ -53,6 +54,14 @@ class _Integral:
 
         return (index(np.ceil(b[..., 0] / c - 0.5 - 1e-9), nx), index(np.floor(b[..., 2] / c - 0.5 + 1e-9) + 1, nx),
                 index(np.ceil(b[..., 1] / c - 0.5 - 1e-9), nz), index(np.floor(b[..., 3] / c - 0.5 + 1e-9) + 1, nz))
+
+    def cells_of_one(self, b) -> tuple[int, int, int, int]:
+        """`cells` of one box (4,), with Python floats (the same IEEE operations, without numpy's per-call cost)."""
+        c = self.grid.cell
+        nx, nz = self.table.shape[0] - 1, self.table.shape[1] - 1
+        x0, z0, x1, z1 = (float(v) for v in b)
+        return (min(max(math.ceil(x0 / c - 0.5 - 1e-9), 0), nx), min(max(math.floor(x1 / c - 0.5 + 1e-9) + 1, 0), nx),
+                min(max(math.ceil(z0 / c - 0.5 - 1e-9), 0), nz), min(max(math.floor(z1 / c - 0.5 + 1e-9) + 1, 0), nz))
 
     def count_cells(self, i0, i1, j0, j1) -> np.ndarray:
         i1, j1 = np.maximum(i1, i0), np.maximum(j1, j0)
@@ -102,6 +111,7 @@ class CandidateEnergy:
         self.reach = self._reachable(self.blocked)
         self.reach_count = _Integral(self.grid, self.reach)
         self.door_boxes = [np.array(b, float) for b in nav.door_boxes(self.room)]
+        self._strips: dict[tuple, np.ndarray] = {}  # access strip by pose (shared with `after`'s copies)
 
     def after(self, p, pending: Collection[str] = ()) -> CandidateEnergy:
         """The set-up for the next step once `p` is placed: the constant terms are updated with `p`'s
@@ -309,10 +319,25 @@ class CandidateEnergy:
         rc = self.reach_count
         if not isinstance(cut, tuple):
             return (rc.count(strip) - rc.count(_intersect(np.broadcast_to(strip, cut.shape), cut))) > 0
+        if np.ndim(strip) == 1:  # one strip for all candidates: compare with its reachable cells' bounding box
+            return self._outside_cut(strip, cut)
         s0, s1, t0, t1 = rc.cells(np.asarray(strip))
         c0, c1, d0, d1 = cut
         inter = rc.count_cells(np.maximum(s0, c0), np.minimum(s1, c1), np.maximum(t0, d0), np.minimum(t1, d1))
         return (rc.count_cells(s0, s1, t0, t1) - inter) > 0
+
+    def _outside_cut(self, strip: np.ndarray, cut: tuple) -> np.ndarray:
+        """`_reachable_strip` for one strip (4,): the count of its reachable cells minus those in the cut is
+        positive exactly when the cut's cell range does not cover the bounding box of those cells (a box
+        sticking out of the cut has a reachable cell on its outermost row or column outside it)."""
+        s0, s1, t0, t1 = self.reach_count.cells_of_one(strip)
+        sub = self.reach[s0:max(s1, s0), t0:max(t1, t0)]
+        c0, c1, d0, d1 = cut
+        rows, cols = np.flatnonzero(sub.any(1)), np.flatnonzero(sub.any(0))
+        if not len(rows):
+            return np.zeros(len(c0), bool)
+        covered = (c0 <= s0 + rows[0]) & (c1 > s0 + rows[-1]) & (d0 <= t0 + cols[0]) & (d1 > t0 + cols[-1])
+        return ~covered
 
     def _missing(self, obj: PlanObject) -> list[str]:
         """Plan objects neither placed, nor the candidate, nor pending."""
@@ -337,7 +362,10 @@ class CandidateEnergy:
             door_open |= self._reachable_strip(db, cut)
         reached = np.zeros(len(cands))
         for p in targets:
-            strip = front_boxes(p.x, p.z, p.rotation, p.width, p.depth, ACCESS_DEPTH)
+            key = (p.x, p.z, p.rotation, p.width, p.depth)
+            strip = self._strips.get(key)
+            if strip is None:
+                strip = self._strips[key] = front_boxes(p.x, p.z, p.rotation, p.width, p.depth, ACCESS_DEPTH)
             reached += self._reachable_strip(strip, cut)
         if is_target:
             x, z, rot = cands[:, 0], cands[:, 1], cands[:, 2]

@@ -65,15 +65,16 @@ class Shared:
         return self.placement
 
 
-def grid_boxes(cands: np.ndarray, width: float, depth: float) -> np.ndarray:
+def grid_boxes(cands: np.ndarray, width: float, depth: float, blocks=None) -> np.ndarray:
     """`geometry.boxes` of every candidate, with the rotation's half extents computed once per rotation
-    instead of once per candidate (the same numbers, tested)."""
-    rot = cands[:, 2]
+    instead of once per candidate (the same numbers, tested); `blocks`: `CandidateScorer.grid`'s."""
+    if blocks is None:
+        blocks = [(m, None, r) for r in np.unique(cands[:, 2]) for m in [cands[:, 2] == r]]
     ex, ez = np.empty(len(cands)), np.empty(len(cands))
-    for r in np.unique(rot):
-        m = rot == r
+    for a, b, r, *_ in blocks:
         hx, hz = half_extents(np.asarray(width, float), np.asarray(depth, float), np.array([r]))
-        ex[m], ez[m] = hx[0], hz[0]
+        sel = a if b is None else slice(a, b)
+        ex[sel], ez[sel] = hx[0], hz[0]
     x, z = cands[:, 0], cands[:, 1]
     return np.stack([x - ex, z - ez, x + ex, z + ez], axis=-1)
 
@@ -103,20 +104,34 @@ class CandidateScorer:
     def _axis(self, half: float, length: float) -> np.ndarray:
         if 2 * half > length + 1e-9:
             return np.empty(0)
-        return np.unique(np.round(np.concatenate([np.arange(half, length - half, self.step), [length - half]]), 4))
+        v = np.round(np.concatenate([np.arange(half, length - half, self.step), [length - half]]), 4)
+        d = np.diff(v)
+        if (d[:-1] > 0).all() and d[-1:].size and d[-1] >= 0:  # sorted already, at most the end repeated
+            return v if d[-1] > 0 else v[:-1]  # what np.unique returns, without its sort
+        return np.unique(v)
 
     def candidates(self, obj: PlanObject) -> np.ndarray:
         """(N, 3) array of x, z, rotation for every pose that keeps the footprint inside the room."""
+        return self.grid(obj)[0]
+
+    def grid(self, obj: PlanObject) -> tuple[np.ndarray, tuple[tuple, ...]]:
+        """`candidates` and their blocks (start, stop, rotation, xs, zs): per rotation, x-major over the axes'
+        centres xs, zs."""
         key = (obj.size.x, obj.size.z)
         if key not in self._grids:
-            parts = []
+            axes, blocks, start = {}, [], 0
             for rot in ROTATIONS:
                 hx, hz = (obj.size.x / 2, obj.size.z / 2) if rot in (0.0, 180.0) else (obj.size.z / 2, obj.size.x / 2)
-                xs, zs = self._axis(hx, self.width), self._axis(hz, self.depth)
+                if (hx, hz) not in axes:
+                    axes[(hx, hz)] = self._axis(hx, self.width), self._axis(hz, self.depth)
+                xs, zs = axes[(hx, hz)]
                 if len(xs) and len(zs):
-                    gx, gz = np.meshgrid(xs, zs, indexing="ij")
-                    parts.append(np.stack([gx.ravel(), gz.ravel(), np.full(gx.size, rot)], axis=1))
-            self._grids[key] = np.concatenate(parts) if parts else np.empty((0, 3))
+                    blocks.append((start, start + len(xs) * len(zs), rot, xs, zs))
+                    start += len(xs) * len(zs)
+            cands = np.empty((start, 3))
+            for a, b, rot, xs, zs in blocks:  # = np.meshgrid(xs, zs, indexing="ij"), raveled
+                cands[a:b, 0], cands[a:b, 1], cands[a:b, 2] = np.repeat(xs, len(zs)), np.tile(zs, len(xs)), rot
+            self._grids[key] = cands, tuple(blocks)
         return self._grids[key]
 
     def place(self, obj: PlanObject, x: float, z: float, rotation: float) -> PlacedObject:

@@ -41,16 +41,17 @@ def legal(scorer: CandidateScorer, obj: PlanObject, placed: list[PlacedObject], 
           ) -> tuple[np.ndarray, np.ndarray]:
     """(candidates, mask of those passing the hard filters): the same rules as `CandidateScorer.evaluate`
     (tested), with a sweep-and-prune broad phase instead of an all-pairs overlap matrix."""
-    cands = scorer.candidates(obj)
-    body = grid_boxes(cands, obj.size.x, obj.size.z)
-    ok, _ = hard_filter(scorer, obj, placed, cands, body, SweptBoxes(body), strict)
+    cands, blocks = scorer.grid(obj)
+    body = grid_boxes(cands, obj.size.x, obj.size.z, blocks)
+    ok, _ = hard_filter(scorer, obj, placed, cands, SweptBoxes(body), strict)
     return cands, ok
 
 
 def hard_filter(scorer: CandidateScorer, obj: PlanObject, placed: list[PlacedObject], cands: np.ndarray,
-                body: np.ndarray, swept: SweptBoxes, strict: bool = True) -> tuple[np.ndarray, np.ndarray]:
+                swept: SweptBoxes, strict: bool = True) -> tuple[np.ndarray, np.ndarray]:
     """(mask of the candidates passing the hard filters, squared overlap areas with the placed bodies summed
-    in placed order: the collision term the vectorised energy computes for the same candidates)."""
+    in placed order: the collision term the vectorised energy computes for the same candidates). `swept`:
+    the candidates' bodies."""
     ok = np.ones(len(cands), bool)
     squared = np.zeros(len(cands))
     if not len(cands):
@@ -109,14 +110,14 @@ class Episode:
             terms = self._energy.score(obj, cands)
             return Options(obj, cands, feasible, terms, soft)
         # the candidates' boxes and their sweep structure serve the hard filter, the soft score and the energy
-        cands = self.scorer.candidates(obj)
-        body = grid_boxes(cands, obj.size.x, obj.size.z)
+        cands, blocks = self.scorer.grid(obj)
+        body = grid_boxes(cands, obj.size.x, obj.size.z, blocks)
         swept = SweptBoxes(body)
         strict = True
-        ok, squared = hard_filter(self.scorer, obj, self.placed, cands, body, swept, strict=True)
+        ok, squared = hard_filter(self.scorer, obj, self.placed, cands, swept, True)
         if not ok.any():  # relax the front-clearance rules before giving up
             strict = False
-            ok, squared = hard_filter(self.scorer, obj, self.placed, cands, body, swept, strict=False)
+            ok, squared = hard_filter(self.scorer, obj, self.placed, cands, swept, False)
         feasible = np.flatnonzero(ok)
         if not len(feasible):
             return Options(obj, cands, feasible, {}, np.zeros(0))
