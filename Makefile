@@ -54,6 +54,7 @@ bench: $(STAMP) $(CHROMIUM)
 	$(BIN)/h3ds bench studio
 	$(BIN)/h3ds bench placement --dataset seen
 	$(BIN)/h3ds bench bridge
+	$(BIN)/h3ds bench batch
 
 clean-venv:
 	rm -rf $(VENV)

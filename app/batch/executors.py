@@ -50,6 +50,15 @@ def describe(e: BaseException) -> str:
     return f"{type(e).__name__}: {e}{where}"
 
 
+def guarded(fn: Callable[[Any], Any], item: Any) -> tuple[bool, Any]:
+    """`fn(item)` as (True, value) or (False, error line), described where it happened, so that every
+    executor reports the same text for the same error."""
+    try:
+        return True, fn(item)
+    except Exception as e:  # one bad item never stops the batch
+        return False, describe(e)
+
+
 class _Closing:
     def __enter__(self):
         return self
@@ -64,10 +73,8 @@ class InProcess(_Closing):
 
     def run(self, fn, items):
         for i, item in enumerate(items):
-            try:
-                yield Done(i, fn(item))
-            except Exception as e:  # one bad item never stops the batch
-                yield Done(i, error=describe(e))
+            ok, value = guarded(fn, item)
+            yield Done(i, value) if ok else Done(i, error=value)
 
     def close(self) -> None:
         pass
@@ -85,11 +92,7 @@ def _worker_main(conn) -> None:
             return
         index, fn, item = msg
         try:
-            reply = (index, True, fn(item))
-        except Exception as e:
-            reply = (index, False, describe(e))
-        try:
-            conn.send(reply)
+            conn.send((index, *guarded(fn, item)))
         except (BrokenPipeError, OSError):
             return
 
@@ -203,15 +206,13 @@ class RayExecutor(_Closing):
 
     def run(self, fn, items):
         ray = self._ray
-        from ray.exceptions import RayTaskError
-
-        task = ray.remote(num_cpus=1, max_retries=self.max_retries, retry_exceptions=False)(fn)
+        task = ray.remote(num_cpus=1, max_retries=self.max_retries, retry_exceptions=False)(guarded)
         todo = iter(enumerate(items))
         pending: dict[Any, int] = {}
 
         def submit() -> None:
             for index, item in todo:
-                pending[task.remote(item)] = index
+                pending[task.remote(fn, item)] = index
                 if len(pending) >= 2 * self.workers:
                     return
 
@@ -221,12 +222,11 @@ class RayExecutor(_Closing):
             for ref in ready:
                 index = pending.pop(ref)
                 try:
-                    yield Done(index, ray.get(ref))
-                except RayTaskError as e:
-                    cause = getattr(e, "cause", None)
-                    yield Done(index, error=describe(cause) if isinstance(cause, BaseException) else str(e).strip())
+                    ok, value = ray.get(ref)
                 except ray.exceptions.RayError as e:  # the worker died more than max_retries times, ...
                     yield Done(index, error=f"{type(e).__name__}: {str(e).strip().splitlines()[0]}")
+                    continue
+                yield Done(index, value) if ok else Done(index, error=value)
             submit()
 
     def close(self) -> None:

@@ -83,6 +83,11 @@ def row_of(task: SceneTask | None, line: int, key: str | None, error: str | None
     return row
 
 
+def figures_of(row: dict) -> dict:
+    """A results row without what depends on the clock or the worker: equal for the same line on any executor."""
+    return {k: v for k, v in row.items() if k not in TIMINGS and k != "worker"}
+
+
 # ---------------------------------------------------------------- the input
 
 
@@ -111,7 +116,10 @@ def read_tasks(path: Path, out: Path, parser: str | None = None) -> tuple[list[S
             first = e.errors()[0]
             bad.append(row_of(None, n, key, f"line {n}: {'.'.join(map(str, first['loc']))}: {first['msg']}"))
             continue
-        except (json.JSONDecodeError, ValueError) as e:
+        except json.JSONDecodeError as e:
+            bad.append(row_of(None, n, key, f"line {n}: not a JSON object ({e.msg} at column {e.colno})"))
+            continue
+        except ValueError as e:
             bad.append(row_of(None, n, key, f"line {n}: {e}"))
             continue
         keys.add(key)

@@ -22,6 +22,8 @@ def run_benchmark(what: str, args) -> int:
         from app.bench.vrpose import main
     elif what == "bridge":
         from app.bench.bridge import main
+    elif what == "batch":
+        from app.bench.batch import main
     else:
         raise ValueError(f"unknown benchmark {what!r}")
     return main(args)
