@@ -174,7 +174,8 @@ def cmd_batch_generate(args) -> int:
         with executor_from_args(args) as executor:
             print(f"batch: {args.input} -> {args.out} on {executor.name} ({executor.workers} workers)",
                   file=sys.stderr, flush=True)
-            summary = run_batch(Path(args.input), Path(args.out), executor, args.parser, not args.no_progress)
+            studio = _studio_database() if args.studio else None
+            summary = run_batch(Path(args.input), Path(args.out), executor, args.parser, not args.no_progress, studio)
     except BatchError as e:
         raise BadInput(str(e)) from e
     print(f"{summary.done} generated, {summary.skipped} already complete, {summary.failed} failed of "
@@ -182,6 +183,11 @@ def cmd_batch_generate(args) -> int:
     for line in summary.errors[:10]:
         print(f"  failed: {line}", file=sys.stderr)
     return 1 if summary.failed else 0
+
+
+def _studio_database() -> str:
+    from studio_db.store import default_database_url
+    return default_database_url()
 
 
 def cmd_studio(args) -> int:
@@ -438,6 +444,8 @@ def build_parser() -> argparse.ArgumentParser:
     b.add_argument("--parser", choices=["combined", "rules", "lora"], default=None,
                    help="instruction parser (default: the pipeline's)")
     b.add_argument("--no-progress", action="store_true", help="no progress bar")
+    b.add_argument("--studio", action="store_true", help="also store every scene in the studio's database "
+                   "(DATABASE_URL or the studio's SQLite file), to browse the batch in the Scenes tab")
     _executor_options(b, "worker processes (default: one per CPU; on Ray: the cluster's CPUs)")
     b.set_defaults(run=cmd_batch_generate)
     return ap

@@ -1,5 +1,6 @@
 """Batch generation: bad lines recorded, resumption, the same outputs in process, on local processes and on a
-local Ray, a killed worker and a killed driver on both, the progress bar, Ray imported only when asked for."""
+local Ray, a killed worker and a killed driver on both (every scene once on disk and in the studio's database),
+the progress bar, Ray imported only when asked for."""
 
 from __future__ import annotations
 
@@ -17,7 +18,10 @@ import pytest
 
 from app.batch.executors import InProcess, LocalProcesses, RayExecutor
 from app.batch.scenes import MARKER, SCENES, BatchError, complete, read_tasks, run_batch
+from app.batch.studio import studio_name
+from app.pipeline import generation_of
 from batch_support import figures, results, scene_files, write_lines
+from studio_db.store import Store
 
 H3DS = [sys.executable, "-m", "app.cli"]
 N = 16  # lines of the shared batch: enough that the kill tests' drivers die with most of it still to do
@@ -165,8 +169,9 @@ def test_killed_worker_and_killed_driver_leave_every_scene_exactly_once_and_inta
     out = tmp_path / "out"
     where = ["--workers", "2"] if on == "local" else ["--ray-address", request.getfixturevalue("local_ray")]
     workers_of = _local_workers if on == "local" else _ray_workers
-    cmd = H3DS + ["batch", "generate", str(batch.source), "--out", str(out), "--no-progress", *where]
-    driver = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    cmd = H3DS + ["batch", "generate", str(batch.source), "--out", str(out), "--no-progress", "--studio", *where]
+    env = {**os.environ, "DATABASE_URL": f"sqlite:///{tmp_path / 'studio.db'}"}
+    driver = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, env=env)
     try:
         _wait_for(lambda: _finished(out) >= 1)
         workers = _wait_for(lambda: workers_of(driver))
@@ -179,7 +184,7 @@ def test_killed_worker_and_killed_driver_leave_every_scene_exactly_once_and_inta
     finally:
         if driver.poll() is None:
             driver.kill()
-    restart = subprocess.run(cmd, capture_output=True, text=True, timeout=120)
+    restart = subprocess.run(cmd, capture_output=True, text=True, timeout=120, env=env)
     assert restart.returncode == 0, restart.stderr
     assert "already complete" in restart.stdout
 
@@ -190,6 +195,23 @@ def test_killed_worker_and_killed_driver_leave_every_scene_exactly_once_and_inta
     rows = results(out)
     assert [r["line"] for r in rows] == list(range(1, N + 1)) and {r["status"] for r in rows} == {"ok"}
     assert scene_files(out) == scene_files(batch.reference)
+    stored = [s["name"] for s in Store(env["DATABASE_URL"]).list_scenes()]
+    assert sorted(stored) == sorted(studio_name("out", t.key, t.digest()) for t in tasks)
+
+
+def test_studio_gets_each_scene_once_and_a_rerun_adds_only_the_missing_ones(tmp_path):
+    url = f"sqlite:///{tmp_path / 'studio.db'}"
+    source = write_lines(tmp_path / "in.jsonl", 2)
+    run_batch(source, tmp_path / "a", InProcess(), progress=False)  # first without --studio
+    assert run_batch(source, tmp_path / "a", InProcess(), progress=False, studio=url).done == 2
+    again = run_batch(source, tmp_path / "a", InProcess(), progress=False, studio=url)
+    assert (again.skipped, again.done) == (2, 0)
+    store = Store(url)
+    scenes = store.list_scenes()
+    assert sorted(s["name"] for s in scenes) == [f"a/line-00000{i} ({t.digest()[:8]})"
+                                                for i, t in enumerate(read_tasks(source, tmp_path)[0], start=1)]
+    gen = generation_of(store.scene(scenes[0]["id"]))  # opens in the studio like a scene saved there
+    assert gen.layout.placements and store.versions(scenes[0]["id"])[0]["solver"] == "dfs"
 
 
 def test_the_progress_bar_shows_done_failed_rate_and_time_left(tmp_path, capsys):

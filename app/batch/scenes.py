@@ -10,6 +10,7 @@ A scene is written into `OUT/scenes/.tmp-<key>-...` and renamed into place with 
 a worker or driver killed at any moment leaves either a finished scene or a temporary folder that the
 next run deletes. A re-run skips the lines whose scene is complete on disk for the same spec
 (instruction, room type, seed, solver, parser) and runs the rest again, failed lines included.
+With `studio` (--studio) every scene also goes into the studio's database: see app/batch/studio.py.
 """
 
 from __future__ import annotations
@@ -23,13 +24,13 @@ import shutil
 import socket
 import time
 import uuid
-from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
 from pydantic import BaseModel, ConfigDict, ValidationError
 
 from app.batch.executors import Done, Executor
+from app.batch.studio import store_scene, stored_names, studio_name
 
 MARKER = "DONE.json"
 RESULTS = "results.jsonl"
@@ -62,8 +63,9 @@ class SceneTask:
     key: str
     line: int
     spec: SceneSpec
-    out: str  # the batch's output folder (shared by every worker on a cluster)
+    out: str  # the batch's output folder, absolute (shared by every worker on a cluster)
     parser: str | None = None
+    studio: str | None = None  # with --studio: the studio's database URL (app/batch/studio.py)
 
     def digest(self) -> str:
         fields = {**self.spec.model_dump(exclude={"id"}), "parser": self.parser}
@@ -91,7 +93,8 @@ def figures_of(row: dict) -> dict:
 # ---------------------------------------------------------------- the input
 
 
-def read_tasks(path: Path, out: Path, parser: str | None = None) -> tuple[list[SceneTask], list[dict]]:
+def read_tasks(path: Path, out: Path, parser: str | None = None,
+               studio: str | None = None) -> tuple[list[SceneTask], list[dict]]:
     """The input's lines as tasks, and a results row with the error for each line that is not one."""
     try:
         lines = path.read_text(encoding="utf-8").splitlines()
@@ -123,7 +126,7 @@ def read_tasks(path: Path, out: Path, parser: str | None = None) -> tuple[list[S
             bad.append(row_of(None, n, key, f"line {n}: {e}"))
             continue
         keys.add(key)
-        tasks.append(SceneTask(key, n, spec, str(out), parser))
+        tasks.append(SceneTask(key, n, spec, str(out.resolve()), parser, studio))
     return tasks, bad
 
 
@@ -175,6 +178,9 @@ def run_scene(task: SceneTask) -> dict:
     marker = {"spec": task.spec.model_dump(), "parser": task.parser, "digest": task.digest(),
               "files": {p.name: _file_digest(p) for p in paths}, "row": row}
     (tmp / MARKER).write_text(json.dumps(marker, indent=1) + "\n")
+    if task.studio:  # before publishing: a scene complete on disk is always in the database too
+        store_scene(task.studio, studio_name(scenes.parent.name, task.key, task.digest()), gen, task.spec.seed,
+                    task.spec.solver)
     publish(tmp, scenes / task.key, task.digest())
     return row
 
@@ -268,9 +274,10 @@ def write_results(out: Path, rows: dict[int, dict]) -> Path:
 
 
 def run_batch(source: Path, out: Path, executor: Executor, parser: str | None = None, progress: bool = True,
-              on_row: Callable[[dict], None] | None = None) -> Summary:
-    """Every line of `source` into `out`; see the module docstring. `on_row` sees each row as it lands."""
-    tasks, bad = read_tasks(source, out, parser)
+              studio: str | None = None) -> Summary:
+    """Every line of `source` into `out`; see the module docstring. `studio`: a database URL to store every
+    scene in as well (a scene complete on disk but missing there is made again)."""
+    tasks, bad = read_tasks(source, out, parser, studio)
     out.mkdir(parents=True, exist_ok=True)
     lock = _Lock(out)
     try:
@@ -279,9 +286,10 @@ def run_batch(source: Path, out: Path, executor: Executor, parser: str | None = 
         _clean_temporaries(scenes)
         rows = {r["line"]: r for r in bad}
         todo = []
+        in_studio = stored_names(studio, out.resolve().name) if studio else set()
         for t in tasks:
             marker = complete(scenes / t.key, t.digest())
-            if marker is None:
+            if marker is None or (studio and studio_name(out.resolve().name, t.key, t.digest()) not in in_studio):
                 todo.append(t)
             else:
                 rows[t.line] = marker["row"]
@@ -298,8 +306,6 @@ def run_batch(source: Path, out: Path, executor: Executor, parser: str | None = 
                 else:
                     summary.failed += 1
                     summary.errors.append(f"{row['key']}: {row['error']}")
-                if on_row:
-                    on_row(row)
                 bar.set_postfix(done=summary.done + summary.skipped, failed=summary.failed, refresh=False)
                 bar.update(1)
         finally:
