@@ -276,7 +276,8 @@ def cmd_train_roles(args) -> int:
 def cmd_train_placement(args) -> int:
     from models.placement.plan2place.agent import TrainConfig, export_weights, plot_curves, train
     from models.placement.plan2place.network import NetConfig
-    net = NetConfig(hidden=args.hidden, fusion=args.fusion, sff=not args.no_sff).as_dict()
+    prior = {} if args.prior_temp is None else {"prior_temp": args.prior_temp}
+    net = NetConfig(hidden=args.hidden, fusion=args.fusion, sff=not args.no_sff, **prior).as_dict()
     cfg = TrainConfig(episodes=args.episodes, batch=args.batch, lr=args.lr, seed=args.seed,
                       use_global=not args.no_global, aux=not args.no_aux, net=net)
     out = Path(args.out)
@@ -410,6 +411,8 @@ def build_parser() -> argparse.ArgumentParser:
     t.add_argument("--episodes", type=int, default=2000)
     t.add_argument("--batch", type=int, default=4, help="episodes per update")
     t.add_argument("--lr", type=float, default=3e-4)
+    t.add_argument("--prior-temp", type=float, default=None,
+                   help="temperature of the actor's immediate-energy prior (default 0.05; 0: none)")
     t.add_argument("--seed", type=int, default=0)
     t.add_argument("--hidden", type=int, default=128)
     t.add_argument("--fusion", choices=["cross", "self", "concat"], default="cross")
