@@ -28,15 +28,22 @@ def house_grid(floorplan: Floorplan) -> nav.Grid:
     return nav.Grid(width, depth)
 
 
-def _door_passage(grid: nav.Grid, door: Doorway, radius: float) -> np.ndarray:
-    """Cells through the door's hole: across the wall (both sides), the hole's width less the radius."""
+def passage_mask(grid: nav.Grid, x0: float, z0: float, x1: float, z1: float, radius: float) -> np.ndarray:
+    """Cells through a hole from (x0, z0) to (x1, z1) in a wall along x or z: across the wall (both sides),
+    the hole's width less the radius at each end."""
     gx, gz = grid.mesh()
     reach = radius + grid.cell
-    if door.z0 == door.z1:  # a wall along x at z0
-        lo, hi = door.x0 + door.center - door.width / 2 + radius, door.x0 + door.center + door.width / 2 - radius
-        return (gx >= lo) & (gx <= hi) & (np.abs(gz - door.z0) <= reach)
-    lo, hi = door.z0 + door.center - door.width / 2 + radius, door.z0 + door.center + door.width / 2 - radius
-    return (gz >= lo) & (gz <= hi) & (np.abs(gx - door.x0) <= reach)
+    if z0 == z1:  # a wall along x at z0
+        return (gx >= min(x0, x1) + radius) & (gx <= max(x0, x1) - radius) & (np.abs(gz - z0) <= reach)
+    return (gz >= min(z0, z1) + radius) & (gz <= max(z0, z1) - radius) & (np.abs(gx - x0) <= reach)
+
+
+def _door_passage(grid: nav.Grid, door: Doorway, radius: float) -> np.ndarray:
+    if door.z0 == door.z1:
+        lo, hi = door.x0 + door.center - door.width / 2, door.x0 + door.center + door.width / 2
+        return passage_mask(grid, lo, door.z0, hi, door.z0, radius)
+    lo, hi = door.z0 + door.center - door.width / 2, door.z0 + door.center + door.width / 2
+    return passage_mask(grid, door.x0, lo, door.x0, hi, radius)
 
 
 def house_blocked(grid: nav.Grid, floorplan: Floorplan, objects: list[Footprint],

@@ -55,8 +55,9 @@ def blocked_by_polygons(grid: Grid, polygons: list[Polygon], radius: float = ROB
     """Exact: cells whose centre is within `radius` of a polygon or of a wall."""
     gx, gz = grid.mesh()
     blocked = (gx < radius) | (gz < radius) | (gx > grid.width - radius) | (gz > grid.depth - radius)
+    points = shapely.points(gx, gz) if polygons else None  # built once: it costs more than a dwithin
     for poly in polygons:
-        blocked |= shapely.dwithin(poly, shapely.points(gx, gz), radius)
+        blocked |= shapely.dwithin(poly, points, radius)
     return blocked
 
 

@@ -95,18 +95,19 @@ def state_class(cooled: bool, heated: bool) -> str | None:
     return "hot" if heated else "cold" if cooled else None
 
 
-def house_id(obj: SceneObject, child: bool) -> str:
+def house_id(obj: SceneObject, child: bool, room: int = 1) -> str:
     """The id the ProcTHOR export gives a scene object (models.exports.procthor_house.thor_id)."""
     from models.exports.procthor_house import thor_id
-    return thor_id(obj, child)
+    return thor_id(obj, child, room)
 
 
-def haptic_profiles(scene: Scene) -> list[HapticProfile]:
-    """One profile per object of the scene, children included, keyed by the exported house id."""
+def haptic_profiles(scene: Scene, room: int = 1) -> list[HapticProfile]:
+    """One profile per object of the scene, children included, keyed by the exported house id (`room`: the
+    number the house gives the scene's room)."""
     out = []
     for o in scene.objects:
-        out.append(profile_for(house_id(o, False), o.id, o.type))
-        out.extend(profile_for(house_id(c, True), c.id, c.type) for c in o.children)
+        out.append(profile_for(house_id(o, False, room), o.id, o.type))
+        out.extend(profile_for(house_id(c, True, room), c.id, c.type) for c in o.children)
     return out
 
 

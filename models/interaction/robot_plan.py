@@ -37,16 +37,17 @@ APPROACH = 1.0  # the robot stands at most this far from the object (it can act 
 BEHIND_PENALTY = 0.5  # metres of detour a cell beside or behind a front-used holder counts as
 
 
-def _house_ids(scene: Scene | None) -> dict[str, str]:
-    """house id -> the scene role of that object (so the task's own objects are chosen over context ones)."""
+def house_roles(scene: Scene | None, room: int = 1) -> dict[str, str]:
+    """house id -> the scene role of that object (so the task's own objects are chosen over context ones);
+    `room` is the number the house gives the scene's room (1 for a single room)."""
     if scene is None:
         return {}
     from models.exports.procthor_house import thor_id
     out = {}
     for o in scene.objects:
-        out[thor_id(o, False)] = o.role
+        out[thor_id(o, False, room)] = o.role
         for c in o.children:
-            out[thor_id(c, True)] = c.role
+            out[thor_id(c, True, room)] = c.role
     return out
 
 
@@ -135,8 +136,9 @@ def approach_pose(state: SymbolicState, object_id: str) -> tuple[float, float, f
     APPROACH of it, on the front side of its floor holder when that is used from the front; facing it."""
     grid, reachable = state.navigation()
     root, obj = state.root(object_id), state.objects[object_id]
+    usable = reachable & state.in_room(state.room_at(root.x, root.z))  # not through a wall from the next room
     gx, gz = grid.mesh()
-    xs, zs = gx[reachable] + state.room[0], gz[reachable] + state.room[1]
+    xs, zs = gx[usable] + state.room[0], gz[usable] + state.room[1]
     if not len(xs):
         return None
     d = shapely.distance(obj.footprint().polygon(), shapely.points(xs, zs))
@@ -169,11 +171,14 @@ def robot_plan(scene: Scene | None, house: dict, graph: TaskGraph | None = None,
                force_action: bool = True) -> RobotPlan:
     """The plan for the scene's task on its exported house. `forceAction` is True by default, as ALFRED's
     executor sends it; the symbolic checker still requires the robot within reach of every object."""
-    graph = graph or (scene.task_graph if scene else None)
+    return plan_on_house(house, graph or (scene.task_graph if scene else None), house_roles(scene), force_action)
+
+
+def plan_on_house(house: dict, graph: TaskGraph | None, roles: dict[str, str], force_action: bool = True) -> RobotPlan:
+    """The plan for a task on an exported house (one room or several); `roles`: house id -> scene role."""
     if graph is None:
         return RobotPlan(task_type="", instruction="", steps=[], problems=["the scene has no task graph"])
     state = SymbolicState.from_house(house)
-    roles = _house_ids(scene)
     parts = _task_parts(graph)
     ids = {"target": _choose(state, parts.get("target"), roles, ("key",))}
     for part, prefer in (("receptacle", ("anchor", "key")), ("fridge", ("inference",)),

@@ -6,7 +6,9 @@ closed receptacle cannot be taken and nothing can be put into a closed one; a mi
 closed, and opening it turns it off; SliceObject needs a knife in hand and makes a slice
 (`<id>|<Type>Sliced_1`, `EggCracked_0` for an egg, as AI2-THOR names them); every interaction needs the
 robot within INTERACT_RANGE of the object (AI2-THOR's default visibilityDistance); TeleportFull must land
-on free floor connected to the robot's start (a robot of models.energy.weights.ROBOT_RADIUS).
+on free floor connected to the robot's start (a robot of models.energy.weights.ROBOT_RADIUS). In a house of
+several rooms the floor is each room's, away from its walls, joined only through the doorways between
+rooms (models.interaction.floors), and the robot acts only on objects in the room it stands in.
 State tracking as ALFRED's: after every step, whatever is inside a closed cold source (the fridge) is
 cooled, and whatever is inside a heat source that is on (the microwave) is heated.
 """
@@ -24,7 +26,9 @@ from scipy import ndimage
 from shapely.geometry import Point
 
 from models.energy import navigation as nav
+from models.energy.weights import ROBOT_RADIUS
 from models.geometry import Footprint
+from models.interaction.floors import Passage, floors, passages, room_cells, walkable
 from models.values.interaction import PlanStep, StepResult
 from models.world import catalogue
 
@@ -105,9 +109,12 @@ class SymbolicState(BaseModel):
     rotation: float = 0.0
     horizon: float = 30.0
     held: str | None = None
-    room: tuple[float, float, float, float]  # xmin, zmin, xmax, zmax
+    room: tuple[float, float, float, float]  # xmin, zmin, xmax, zmax of the house
+    floors: dict[str, list[tuple[float, float]]] = {}  # room id -> floor polygon; none: the whole box is floor
+    doorways: list[Passage] = []  # between rooms: the only way from one room's floor to another's
     _reachable: Any = PrivateAttr(default=None)
     _grid: Any = PrivateAttr(default=None)
+    _rooms: Any = PrivateAttr(default=None)  # per cell, the index of its room in `floors` (-1: none)
 
     @classmethod
     def from_house(cls, house: dict) -> SymbolicState:
@@ -122,7 +129,7 @@ class SymbolicState(BaseModel):
         pos = agent.get("position", {"x": (min(xs) + max(xs)) / 2, "y": 0.95, "z": (min(zs) + max(zs)) / 2})
         state = cls(objects=objects, agent_x=pos["x"], agent_z=pos["z"], agent_y=pos.get("y", 0.95),
                     rotation=agent.get("rotation", {}).get("y", 0.0), horizon=agent.get("horizon", 30.0),
-                    room=(min(xs), min(zs), max(xs), max(zs)))
+                    room=(min(xs), min(zs), max(xs), max(zs)), floors=floors(house), doorways=passages(house))
         state._build_navigation()
         return state
 
@@ -133,6 +140,9 @@ class SymbolicState(BaseModel):
         polys = [shapely.affinity.translate(o.footprint().polygon(), -x0, -z0)
                  for o in self.objects.values() if o.on_floor]
         blocked = nav.blocked_by_polygons(grid, polys)
+        if self.floors:
+            blocked |= ~walkable(grid, (x0, z0), self.floors, self.doorways, ROBOT_RADIUS)
+            self._rooms = room_cells(grid, (x0, z0), self.floors)
         labels, _ = ndimage.label(~blocked)
         i, j = self._cell(grid, self.agent_x, self.agent_z)
         start = labels[i, j]
@@ -152,6 +162,18 @@ class SymbolicState(BaseModel):
         if self._reachable is None:
             self._build_navigation()
         return self._grid, self._reachable
+
+    def room_at(self, x: float, z: float) -> str | None:
+        """The id of the room whose floor holds the point (None outside every floor, or with no floors)."""
+        return next((rid for rid, poly in self.floors.items() if shapely.contains_xy(shapely.Polygon(poly), x, z)),
+                    None)
+
+    def in_room(self, room_id: str | None) -> np.ndarray:
+        """Per navigation cell, whether it lies in that room (every cell when the house has no floors)."""
+        grid, reachable = self.navigation()
+        if room_id is None or room_id not in self.floors:
+            return np.ones_like(reachable)
+        return self._rooms == list(self.floors).index(room_id)
 
     def can_stand(self, x: float, z: float) -> bool:
         grid, reachable = self.navigation()
@@ -217,7 +239,7 @@ def execute_step(state: SymbolicState, step: PlanStep | dict) -> tuple[SymbolicS
     action = step.action if isinstance(step, PlanStep) else step
     name = str(action.get("action", ""))
     new = state.model_copy(deep=True)
-    new._grid, new._reachable = state._grid, state._reachable
+    new._grid, new._reachable, new._rooms = state._grid, state._reachable, state._rooms
     try:
         message = _execute(new, name, action)
     except ActionError as e:
@@ -235,6 +257,11 @@ def _target(state: SymbolicState, action: dict) -> ObjectState:
         raise ActionError(f"no object {oid} in the house")
     if o.sliced:
         raise ActionError(f"{oid} has been sliced; use its slice")
+    if len(state.floors) > 1 and oid != state.held:
+        root = state.root(oid)
+        here, there = state.room_at(state.agent_x, state.agent_z), state.room_at(root.x, root.z)
+        if here != there:
+            raise ActionError(f"{oid} is in {there}, the robot in {here}: go through the doors to it first")
     d = state.distance_to(oid)
     if d > INTERACT_RANGE:
         raise ActionError(f"{oid} is {d:.2f} m away, beyond reach ({INTERACT_RANGE} m): navigate to it first")

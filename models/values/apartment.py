@@ -27,6 +27,11 @@ class HouseRoom(Value):
     z: float
 
     @property
+    def number(self) -> int:
+        """The room's number in the house JSON's ids (`Fridge|<n>|0`)."""
+        return int(self.id.split("|")[-1])
+
+    @property
     def bounds(self) -> tuple[float, float, float, float]:
         """(xmin, zmin, xmax, zmax) in the house."""
         return self.x, self.z, self.x + self.room.width, self.z + self.room.depth
