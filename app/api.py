@@ -10,13 +10,12 @@ import json
 from typing import Annotated
 
 from fastapi import FastAPI, HTTPException, Response
-from pydantic import AfterValidator, BaseModel, Field
+from pydantic import AfterValidator, BaseModel, Field, model_validator
 
 from app.bridge import bridge_for, mount
 from app.pipeline import Pipeline, dump
 from models.exports.apartment import apartment_house
-from models.exports.glb import to_glb
-from models.exports.procthor_house import to_house
+from models.exports.stored import glb_of, house_of
 from models.language import InstructionError, check_instruction
 from models.placement import SOLVERS
 from models.planning.apartment_planner import APARTMENT, ApartmentError, is_apartment, parse_rooms
@@ -25,7 +24,7 @@ from models.values import Scene
 from models.values.apartment import Apartment
 from models.world import normalise_room_type
 from studio_db import NotFound, Store
-from studio_db.store import Edit
+from studio_db.store import Edit, Stored, WrongKind
 
 
 def _known_solver(name: str) -> str:
@@ -58,11 +57,24 @@ class EditIn(BaseModel):
 
 
 class AcceptRequest(BaseModel):
+    """A single room (`scene`) or an apartment (`apartment`, as POST /generate returns it): exactly one."""
+
     name: str = Field(min_length=1, max_length=200)
-    scene: Scene
+    scene: Scene | None = None
+    apartment: Apartment | None = None
     seed: int = Field(0, ge=0)
     solver: str = Field("dfs", min_length=1, max_length=40)
     edits: list[EditIn] = Field(default_factory=list)
+
+    @model_validator(mode="after")
+    def _one_value(self) -> AcceptRequest:
+        if (self.scene is None) == (self.apartment is None):
+            raise ValueError("give exactly one of scene (a single room) and apartment")
+        return self
+
+    @property
+    def value(self) -> Stored:
+        return self.scene or self.apartment
 
 
 def _apartment(apartment: Apartment) -> dict:
@@ -75,7 +87,7 @@ def create_app(store: Store, pipeline: Pipeline | None = None) -> FastAPI:
     app = FastAPI(title="H3DS Studio API", version="0.1.0",
                   description="Instruction -> AI2-THOR scene; stored scenes, versions and exports.")
 
-    def scene_or_404(scene_id: int, number: int | None = None) -> Scene:
+    def scene_or_404(scene_id: int, number: int | None = None) -> Stored:
         try:
             return store.scene(scene_id, number)
         except NotFound as e:
@@ -103,19 +115,21 @@ def create_app(store: Store, pipeline: Pipeline | None = None) -> FastAPI:
 
     @app.post("/scenes", status_code=201)
     def accept(req: AcceptRequest) -> dict:
-        """Store a scene as a new scene with version 1."""
+        """Store a scene (a single room or an apartment) as a new scene with version 1."""
         edits = [Edit(e.kind, e.target, e.before, e.after) for e in req.edits]
-        scene_id, number = store.create_scene(req.name, req.scene, req.seed, req.solver, edits)
+        scene_id, number = store.create_scene(req.name, req.value, req.seed, req.solver, edits)
         return {"scene_id": scene_id, "version": number}
 
     @app.post("/scenes/{scene_id}/versions", status_code=201)
     def accept_version(scene_id: int, req: AcceptRequest) -> dict:
-        """Store a scene as the next version of an existing scene."""
+        """Store a scene as the next version of an existing scene of the same kind (409 otherwise)."""
         edits = [Edit(e.kind, e.target, e.before, e.after) for e in req.edits]
         try:
-            number = store.add_version(scene_id, req.name, req.scene, req.seed, req.solver, edits)
+            number = store.add_version(scene_id, req.name, req.value, req.seed, req.solver, edits)
         except NotFound as e:
             raise HTTPException(404, str(e)) from e
+        except WrongKind as e:
+            raise HTTPException(409, str(e)) from e
         return {"scene_id": scene_id, "version": number}
 
     @app.get("/scenes")
@@ -131,22 +145,28 @@ def create_app(store: Store, pipeline: Pipeline | None = None) -> FastAPI:
 
     @app.get("/scenes/{scene_id}/versions/{number}")
     def get_version(scene_id: int, number: int) -> dict:
+        """The stored Scene, or the stored Apartment (floorplan, rooms' plans, layouts and scenes)."""
         return json.loads(scene_or_404(scene_id, number).model_dump_json(exclude_none=True))
 
     @app.get("/scenes/{scene_id}/versions/{number}/house.json")
     def export_house(scene_id: int, number: int) -> dict:
-        return to_house(scene_or_404(scene_id, number))
+        """ProcTHOR house JSON (an apartment's with all its rooms)."""
+        return house_of(scene_or_404(scene_id, number))
 
     @app.get("/scenes/{scene_id}/versions/{number}/scene.glb")
     def export_glb(scene_id: int, number: int) -> Response:
-        return Response(to_glb(scene_or_404(scene_id, number)), media_type="model/gltf-binary",
+        return Response(glb_of(scene_or_404(scene_id, number)), media_type="model/gltf-binary",
                         headers={"Content-Disposition": f'attachment; filename="scene-{scene_id}-v{number}.glb"'})
 
     @app.get("/scenes/{scene_id}/versions/{number}/layout.json")
     def export_layout(scene_id: int, number: int) -> dict:
         from app.pipeline import generation_of
+        stored = scene_or_404(scene_id, number)
+        if isinstance(stored, Apartment):
+            raise HTTPException(409, f"scene {scene_id} is an apartment: its layouts (one per room) are in "
+                                     f"GET /scenes/{scene_id}/versions/{number}")
         try:
-            return json.loads(dump(generation_of(scene_or_404(scene_id, number)).layout))
+            return json.loads(dump(generation_of(stored).layout))
         except ValueError as e:
             raise HTTPException(409, str(e)) from e
 

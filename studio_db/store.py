@@ -1,5 +1,8 @@
 """The store: every write is one transaction, so a failed write leaves what was stored before intact.
 
+A stored scene is a single room (a Scene) or an apartment (an Apartment, stored under room type
+"apartment"); all versions of one stored scene are of the same kind.
+
 SQLite (the default) lives in the user's data directory with write-ahead logging; set `DATABASE_URL`
 (for example `postgresql+psycopg://user@host/db`) to use PostgreSQL instead.
 """
@@ -15,11 +18,30 @@ from sqlalchemy import event, func
 from sqlmodel import Session, SQLModel, create_engine, select
 
 from models.values import Scene
+from models.values.apartment import APARTMENT, Apartment
 from studio_db.tables import EditRow, SceneRow, VersionRow
+
+Stored = Scene | Apartment
 
 
 class NotFound(LookupError):
     pass
+
+
+class WrongKind(ValueError):
+    """A single room given as the next version of an apartment, or the other way round."""
+
+
+def room_type_of(value: Stored) -> str:
+    return APARTMENT if isinstance(value, Apartment) else value.room.type
+
+
+def _provenance(value: Stored) -> dict[str, str]:
+    """stage -> method: which parser, planners and solver made it (an apartment's floorplan and rooms)."""
+    if isinstance(value, Scene):
+        return {p.stage: p.method for p in value.provenance}
+    found = [value.floorplan.provenance] if value.floorplan.provenance else []
+    return {p.stage: p.method for p in found + [p for s in value.scenes for p in s.provenance]}
 
 
 def data_dir() -> Path:
@@ -57,30 +79,33 @@ class Store:
 
     # ---- writes (one transaction each) ------------------------------------------------------------
 
-    def create_scene(self, name: str, scene: Scene, seed: int, solver: str, edits: list[Edit] = ()) -> tuple[int, int]:
-        """A new scene with its first version; returns (scene id, version number)."""
+    def create_scene(self, name: str, scene: Stored, seed: int, solver: str, edits: list[Edit] = ()) -> tuple[int, int]:
+        """A new scene (a single room or an apartment) with its first version; returns (scene id, version number)."""
         graph = scene.task_graph
         with Session(self.engine) as s, s.begin():
-            row = SceneRow(name=name, instruction=graph.instruction if graph else "",
-                           room_type=scene.room.type)
+            row = SceneRow(name=name, instruction=graph.instruction if graph else "", room_type=room_type_of(scene))
             s.add(row)
             s.flush()
             self._add_version(s, row.id, name, scene, seed, solver, edits)
             return row.id, 1
 
-    def add_version(self, scene_id: int, name: str, scene: Scene, seed: int, solver: str,
+    def add_version(self, scene_id: int, name: str, scene: Stored, seed: int, solver: str,
                     edits: list[Edit] = ()) -> int:
+        """The next version of a stored scene, of the same kind (WrongKind otherwise)."""
         with Session(self.engine) as s, s.begin():
-            if s.get(SceneRow, scene_id) is None:
+            row = s.get(SceneRow, scene_id)
+            if row is None:
                 raise NotFound(f"no scene {scene_id}")
+            if (row.room_type == APARTMENT) != isinstance(scene, Apartment):
+                raise WrongKind(f"scene {scene_id} is {_kind(row.room_type == APARTMENT)}; its next version "
+                                f"cannot be {_kind(isinstance(scene, Apartment))}")
             return self._add_version(s, scene_id, name, scene, seed, solver, edits)
 
-    def _add_version(self, s: Session, scene_id: int, name: str, scene: Scene, seed: int, solver: str,
+    def _add_version(self, s: Session, scene_id: int, name: str, scene: Stored, seed: int, solver: str,
                      edits) -> int:
         number = (s.exec(select(func.max(VersionRow.number)).where(VersionRow.scene_id == scene_id)).one() or 0) + 1
-        versions = {p.stage: p.method for p in scene.provenance}
         version = VersionRow(scene_id=scene_id, number=number, name=name, seed=seed, solver=solver,
-                             model_versions=json.dumps(versions), scene_json=scene.model_dump_json())
+                             model_versions=json.dumps(_provenance(scene)), scene_json=scene.model_dump_json())
         s.add(version)
         s.flush()
         for e in edits:
@@ -106,21 +131,27 @@ class Store:
                      "model_versions": json.loads(r.model_versions), "created_at": r.created_at.isoformat()}
                     for r in rows]
 
-    def scene(self, scene_id: int, number: int | None = None) -> Scene:
-        """A stored version (the latest when `number` is None)."""
+    def scene(self, scene_id: int, number: int | None = None) -> Stored:
+        """A stored version (the latest when `number` is None): a Scene, or an Apartment for an apartment."""
         with Session(self.engine) as s:
-            q = select(VersionRow).where(VersionRow.scene_id == scene_id)
+            q = (select(VersionRow.scene_json, SceneRow.room_type).join(SceneRow, VersionRow.scene_id == SceneRow.id)
+                 .where(VersionRow.scene_id == scene_id))
             q = q.where(VersionRow.number == number) if number is not None else q.order_by(VersionRow.number.desc())
             row = s.exec(q).first()
             if row is None:
                 raise NotFound(f"no version {number if number is not None else '(any)'} of scene {scene_id}")
-            return Scene.model_validate_json(row.scene_json)
+            kind = Apartment if row.room_type == APARTMENT else Scene
+            return kind.model_validate_json(row.scene_json)
 
     def edits(self, scene_id: int) -> list[dict]:
         with Session(self.engine) as s:
             rows = s.exec(select(EditRow).where(EditRow.scene_id == scene_id).order_by(EditRow.id)).all()
             return [{"kind": r.kind, "target": r.target, "before": json.loads(r.before), "after": json.loads(r.after),
                      "version_id": r.version_id, "created_at": r.created_at.isoformat()} for r in rows]
+
+
+def _kind(apartment: bool) -> str:
+    return "an apartment" if apartment else "a single room"
 
 
 def _sqlite_pragmas(conn, _record) -> None:

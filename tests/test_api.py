@@ -73,3 +73,39 @@ def test_openapi_documents_every_route(db_url):
     paths = client(db_url).get("/openapi.json").json()["paths"]
     assert {"/generate", "/scenes", "/scenes/{scene_id}/versions", "/scenes/{scene_id}/versions/{number}/scene.glb",
             "/health"} <= set(paths)
+
+
+def test_apartment_accept_restart_read_export(db_url):
+    api = client(db_url)
+    gen = api.post("/generate", json={"instruction": "Put a chilled bread on the counter", "room_type": "apartment",
+                                      "rooms": ["kitchen", "bedroom"], "seed": 4}).json()
+    saved = api.post("/scenes", json={"name": "flat", "apartment": gen["apartment"], "seed": 4})
+    assert saved.status_code == 201 and saved.json()["version"] == 1
+    sid = saved.json()["scene_id"]
+    assert api.post(f"/scenes/{sid}/versions", json={"name": "flat 2", "apartment": gen["apartment"]}).json() == \
+        {"scene_id": sid, "version": 2}
+    single = api.post("/generate", json={"instruction": "Put a chilled bread on the counter", "room_type": "kitchen"})
+    wrong = api.post(f"/scenes/{sid}/versions", json={"name": "a room", "scene": single.json()["scene"]})
+    assert wrong.status_code == 409 and "is an apartment" in wrong.json()["detail"]
+    both = api.post("/scenes", json={"name": "both", "scene": single.json()["scene"], "apartment": gen["apartment"]})
+    assert both.status_code == 422 and "exactly one of scene" in both.text
+
+    again = client(db_url)
+    listed = again.get("/scenes").json()
+    assert listed[0]["id"] == sid and listed[0]["room_type"] == "apartment" and listed[0]["versions"] == 2
+    stored = again.get(f"/scenes/{sid}/versions/2").json()
+    assert [hr["room"]["type"] for hr in stored["plan"]["floorplan"]["rooms"]] == ["kitchen", "bedroom"]
+    house = again.get(f"/scenes/{sid}/versions/2/house.json").json()
+    assert house == gen["house"] and [r["id"] for r in house["rooms"]] == ["room|1", "room|2"]
+    assert again.get(f"/scenes/{sid}/versions/1/scene.glb").content[:4] == b"glTF"
+    layout = again.get(f"/scenes/{sid}/versions/1/layout.json")
+    assert layout.status_code == 409 and "one per room" in layout.json()["detail"]
+
+
+@pytest.mark.parametrize("extra", [{}, {"scene": {"id": "x"}, "apartment": {"id": "y"}}])
+def test_accept_needs_exactly_one_of_scene_and_apartment(db_url, extra):
+    api = client(db_url)
+    r = api.post("/scenes", json={"name": "nothing or both", **extra})
+    assert r.status_code == 422 and api.get("/scenes").json() == []
+    if not extra:
+        assert "exactly one of scene (a single room) and apartment" in r.text

@@ -16,10 +16,9 @@ import re
 from models.planning.floorplan import FloorplanMaker, SlicingFloorplan
 from models.planning.room_planner import RoomPlanner
 from models.values import RoomPlan, TaskGraph
-from models.values.apartment import HousePlan
+from models.values.apartment import APARTMENT, HousePlan
 from models.world import ROOM_TYPES, UnknownRoomType, catalogue, normalise_room_type
 
-APARTMENT = "apartment"
 MAX_ROOMS = 8
 HOME_BONUS = 0.25  # the task's own room type wins when another type is at most this much more likely
 FILL_ORDER = ("bathroom", "bedroom", "kitchen", "dining room", "office", "bedroom")

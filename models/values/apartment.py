@@ -18,6 +18,7 @@ from models.values.scene import AgentPose, Scene
 from models.values.task_graph import TaskGraph
 
 OUTSIDE = "outside"
+APARTMENT = "apartment"  # the room type an apartment is asked for, and stored under
 
 
 class HouseRoom(Value):
