@@ -69,10 +69,10 @@ def run(coro):
     return asyncio.run(asyncio.wait_for(coro, 120))
 
 
-async def paired_with_scene(server: Server, **kw) -> tuple[HeadsetSimulator, dict]:
+async def paired_with_scene(server: Server, scene_id: int | None = None, **kw) -> tuple[HeadsetSimulator, dict]:
     sim = HeadsetSimulator(server.url, server.bridge.token, **kw)
     await sim.connect()
-    await asyncio.to_thread(server.bridge.push, sim.session, server.scene_id, 1)
+    await asyncio.to_thread(server.bridge.push, sim.session, scene_id or server.scene_id, 1)
     push = await asyncio.wait_for(sim.pushes.get(), 30)
     return sim, push
 
@@ -111,6 +111,35 @@ def test_pair_push_run_and_export(server, scene):
     streamed = sum(len(p) for k, p in seen if k == "feedback")
     assert streamed == len(records)
     assert sim.session not in {h.session for h in server.bridge.paired()}  # session_end forgets it
+
+
+def test_a_stored_apartment_is_pushed_and_run_through_its_doors(server, pipeline):
+    apartment = pipeline.generate_apartment("Pick up a mug from the desk, turn on the lamp", None, seed=2)
+    mug_room, lamp_room = (apartment.plan.assignment[t] for t in ("Mug", "DeskLamp"))
+    assert mug_room != lamp_room  # the robot has to walk from one room to the other
+    flat_id, _ = server.store.create_scene("flat", apartment, 2, "dfs")
+
+    async def go():
+        sim, push = await paired_with_scene(server, flat_id)
+        counts = await sim.run_scene(push)
+        assert await sim.wait_acked(30)
+        await sim.close(end_session=True)
+        return sim, push, counts
+
+    sim, push, counts = run(go())
+    assert push["scene_id"] == flat_id and [r["id"] for r in push["house"]["rooms"]] == \
+        [hr.id for hr in apartment.floorplan.rooms]
+    assert push["vr_start_pose"]["best"] == apartment.vr_anchor.model_dump(mode="json")
+    assert not push["robot_plan"]["problems"] and counts["loaded"] and counts["failed_steps"] == 0
+    progress = server.bridge.progress[push["push"]]
+    assert progress.loaded and progress.step == progress.steps == counts["steps"] > 0
+    records = list(server.bridge.feedback.records(session=sim.session))
+    assert len(records) == counts["glove_events"]
+    assert {r["scene_id"] for r in records} == {flat_id} and records[0]["room_type"] == "apartment"
+    touched = {r["object_id"] for r in records}
+    assert f"Mug|surface|{mug_room[-1]}|0" in touched and f"DeskLamp|surface|{lamp_room[-1]}|0" in touched
+    profiles = {p["object_id"]: p for p in push["haptic_profiles"]}
+    assert profiles[f"DeskLamp|surface|{lamp_room[-1]}|0"]["haptic_class"] == "light"
 
 
 def test_export_filters_and_loads_with_datasets(server, tmp_path):

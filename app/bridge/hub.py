@@ -141,16 +141,14 @@ class Bridge:
 
     def push(self, session: str, scene_id: int, version: int, timeout: float = 30.0) -> Progress:
         """Send a stored scene version to a paired, connected headset (from any thread but the loop's)."""
-        from models.exports.procthor_house import to_house
-        from models.interaction import haptic_profiles, robot_plan, vr_start_pose
+        from app.bridge.content import push_content
 
         with self._lock:
             headset = self.headsets.get(session)
         if headset is None or not headset.connected or headset.socket is None:
             raise LookupError(f"headset session {session!r} is not connected")
-        scene = self.store.scene(scene_id, version)
-        house = to_house(scene)
-        plan = robot_plan(scene, house)
+        scene = self.store.scene(scene_id, version)  # a single room or an apartment
+        content = push_content(scene)
         name = next((v["name"] for v in self.store.versions(scene_id) if v["number"] == version), "")
         with self._lock:
             headset.seq += 1
@@ -158,13 +156,13 @@ class Bridge:
         push_id = msg["id"]
         msg["body"] = {
             "push": push_id, "scene_id": scene_id, "version": version, "name": name,
-            "instruction": scene.task_graph.instruction if scene.task_graph else "", "house": house,
-            "vr_start_pose": vr_start_pose(scene).model_dump(mode="json"),
-            "haptic_profiles": [p.model_dump(mode="json") for p in haptic_profiles(scene)],
-            "robot_plan": plan.model_dump(mode="json"),
+            "instruction": scene.task_graph.instruction if scene.task_graph else "", "house": content.house,
+            "vr_start_pose": content.vr_start_pose.model_dump(mode="json"),
+            "haptic_profiles": [p.model_dump(mode="json") for p in content.haptic_profiles],
+            "robot_plan": content.plan.model_dump(mode="json"),
         }
         self.feedback.add_push(push_id, session, headset.headset_id, headset.device, scene_id, version)
-        progress = Progress(push_id, session, scene_id, version, steps=len(plan.steps))
+        progress = Progress(push_id, session, scene_id, version, steps=len(content.plan.steps))
         with self._lock:
             self._pushes.add(push_id)
             self.progress[push_id] = progress
