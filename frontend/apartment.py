@@ -3,12 +3,13 @@
 The apartment is shown as one Scene in the house frame (every room's objects shifted by the room's
 corner), over every room's floor and walls with a label naming the room, with the robot's path through
 the doors. The placement steps come from the rooms in floorplan order, so the step animation goes room
-by room. Apartments are shown, inspected (a click picks an object) and downloaded, not edited or
-stored (the single-room editing tools stay idle).
+by room. Apartments are shown, inspected (a click picks an object), stored as numbered versions (Accept &
+save), reopened and downloaded, not edited (the single-room editing tools stay idle).
 """
 
 from __future__ import annotations
 
+import contextlib
 import time
 from dataclasses import replace
 
@@ -41,7 +42,7 @@ class ApartmentMode:
 
     def generate(self) -> None:
         """Generate an apartment from the Task tab (rooms from the Rooms field, or drawn from the task)."""
-        from frontend.session import Values, _parser_note
+        from frontend.session import _parser_note
         s = self.session
         started = time.perf_counter()
         steps: list[PlacementStep] = []
@@ -52,11 +53,23 @@ class ApartmentMode:
         except (InstructionError, ApartmentError, FloorplanError) as e:
             s.say(f"**Error:** {e}")
             return
+        self.show(apartment, steps, scene_id=None)
+        s._set_unsaved(True)
+        placed = sum(len(layout.placements) for layout in apartment.layouts)
+        s.say(f"Apartment ready (#{s.state.runs}): {len(apartment.scenes)} rooms, {placed} placed, "
+              f"{len(apartment.unplaced)} unplaced ({1000 * (time.perf_counter() - started):.0f} ms)."
+              + (f"\n\n{_parser_note(apartment.task_graph)}" if apartment.task_graph.uncertain else ""))
+
+    def show(self, apartment: Apartment, steps: list[PlacementStep], scene_id: int | None) -> None:
+        """Put an apartment on screen (its steps in the Placement tab); `scene_id`: the stored scene it is."""
+        from frontend.session import Values
+        s = self.session
         with s.lock:
             self.current, self.scene = apartment, house_scene(apartment)
             s.history.clear()
             s.state.values = Values(None, tuple(self._in_house(steps)))
-            s.state.shown, s.state.playing, s.state.scene_id = len(steps), False, None
+            s.state.shown, s.state.playing, s.state.scene_id = len(steps), False, scene_id
+            s.state.seed, s.state.solver = int(s.seed.value), s.solver.value
             s.state.runs += 1
             s.selected = None
         s.picked.visible = False
@@ -65,10 +78,28 @@ class ApartmentMode:
         s.checks_md.content = ""
         s.graph_md.content = self.summary()
         s._draw_graph(apartment.task_graph)
-        placed = sum(len(layout.placements) for layout in apartment.layouts)
-        s.say(f"Apartment ready (#{s.state.runs}): {len(apartment.scenes)} rooms, {placed} placed, "
-              f"{len(apartment.unplaced)} unplaced ({1000 * (time.perf_counter() - started):.0f} ms)."
-              + (f"\n\n{_parser_note(apartment.task_graph)}" if apartment.task_graph.uncertain else ""))
+
+    def save(self) -> None:
+        """Accept & save: a new stored scene, or the next version of the stored apartment on screen. There
+        are no checks to run (they are single-room) and no edits (apartments are not edited)."""
+        s, a = self.session, self.current
+        name = s.save_name.value.strip() or a.task_graph.instruction[:60]
+        sid, number = s.store_version(name, a, [])
+        s.say(f"Saved as scene {sid}, version {number} (“{name}”): an apartment of {len(a.scenes)} rooms.")
+
+    def open(self, apartment: Apartment, scene_id: int, number: int, stored: dict) -> None:
+        """Show a stored apartment; the Placement tab replays each room's placer with the stored seed and
+        solver (the stored poses stay what is shown)."""
+        s = self.session
+        steps: list[PlacementStep] = []
+        with contextlib.suppress(Exception):  # a solver that no longer exists: the apartment opens without replay
+            for plan in apartment.plans:
+                s.pipeline.place(plan, int(s.seed.value), s.solver.value, s._observer(steps))
+        self.show(apartment, steps, scene_id=scene_id)
+        s._set_unsaved(False)
+        s.instruction.value = apartment.task_graph.instruction
+        s.say(f"Opened scene {scene_id}, version {number}: an apartment of {len(apartment.scenes)} rooms "
+              f"(seed {stored['seed']}, solver `{stored['solver']}`).")
 
     def _in_house(self, steps: list[PlacementStep]) -> list[PlacementStep]:
         """Each step's candidates moved from its room's frame to the house frame (for the heat-map)."""

@@ -30,14 +30,13 @@ from frontend.history import History
 from frontend.view import SceneView, world
 from models.constraints import GLOBALS, RELATIONS, Constraint, read_constraints, write_constraints
 from models.energy.exact import layout_energy
-from models.exports.apartment import apartment_glb, apartment_house
-from models.exports.glb import ROLE_COLOURS, to_glb
-from models.exports.procthor_house import to_house
+from models.exports.glb import ROLE_COLOURS
+from models.exports.stored import glb_of, house_of
 from models.language import InstructionError
 from models.metrics import SceneMetrics
 from models.placement import SOLVERS, PlacementStep
-from models.planning.apartment_planner import APARTMENT
 from models.values import Scene, TaskGraph, TaskObject
+from models.values.apartment import APARTMENT, Apartment
 from models.world import ROOM_TYPES, catalogue
 from studio_db import Store
 from studio_db.store import Edit
@@ -775,7 +774,7 @@ class StudioSession:
     def accept(self) -> None:
         gen = self.state.gen
         if self.apartment.current is not None:
-            self.say("**Error:** Apartments cannot be stored yet; download the house JSON or GLB instead.")
+            self.apartment.save()
             return
         if gen is None:
             self.say("**Error:** Nothing to save yet: generate a scene first.")
@@ -795,17 +794,23 @@ class StudioSession:
         edits = list(self.state.edits)
         if overridden:
             edits.append(Edit("override", "checks", [f.text for f in overridden], "saved anyway"))
+        sid, number = self.store_version(name, gen.scene, edits)
+        self.state.values = replace(self.state.values, edits=())
+        self.say(f"Saved as scene {sid}, version {number} (“{name}”)"
+                 + (f", overriding {len(overridden)} failed check(s)." if overridden else "."))
+
+    def store_version(self, name: str, value: Scene | Apartment, edits: list[Edit]) -> tuple[int, int]:
+        """Store as a new scene, or as the next version of the stored scene on screen; select it in the
+        Scenes tab. Returns (scene id, version number)."""
         if self.state.scene_id is None:
-            sid, number = self.store.create_scene(name, gen.scene, self.state.seed, self.state.solver, edits)
+            sid, number = self.store.create_scene(name, value, self.state.seed, self.state.solver, edits)
             self.state.scene_id = sid
         else:
             sid = self.state.scene_id
-            number = self.store.add_version(sid, name, gen.scene, self.state.seed, self.state.solver, edits)
-        self.state.values = replace(self.state.values, edits=())
+            number = self.store.add_version(sid, name, value, self.state.seed, self.state.solver, edits)
         self.list_scenes(select=(sid, number))
         self._set_unsaved(False)
-        self.say(f"Saved as scene {sid}, version {number} (“{name}”)"
-                 + (f", overriding {len(overridden)} failed check(s)." if overridden else "."))
+        return sid, number
 
     def list_scenes(self, select: tuple[int, int] | None = None) -> None:
         scenes = self.store.list_scenes()
@@ -836,15 +841,17 @@ class StudioSession:
             self.say("**Error:** No stored scene selected.")
             return
         scene = self.store.scene(sid, number)
+        stored = self.store.versions(sid)[number - 1]
+        if isinstance(scene, Apartment):
+            self._use_stored_settings(stored)
+            self.apartment.open(scene, sid, number, stored)
+            return
         try:
             gen = generation_of(scene)
         except ValueError as e:
             self.say(f"**Error:** {e}")
             return
-        stored = self.store.versions(sid)[number - 1]
-        self.seed.value = stored["seed"]
-        if stored["solver"] in SOLVERS:
-            self.solver.value = stored["solver"]
+        self._use_stored_settings(stored)
         with self._busy("Opening the stored scene") as free:
             if not free:
                 return
@@ -856,6 +863,12 @@ class StudioSession:
                  f"tab replays the placer re-run with the stored seed ({stored['seed']}) and solver "
                  f"(`{stored['solver']}`); each object lands at its stored pose.")
 
+    def _use_stored_settings(self, stored: dict) -> None:
+        """The Task tab's seed and solver become the stored version's (the replay uses them)."""
+        self.seed.value = stored["seed"]
+        if stored["solver"] in SOLVERS:
+            self.solver.value = stored["solver"]
+
     def _replayable(self, gen: Generation, observer) -> Generation:
         """A stored scene has no recorded steps: re-run its placer with the stored seed for the order and
         candidates of each step; the stored layout (with the designer's moves) stays what is shown."""
@@ -866,24 +879,23 @@ class StudioSession:
     def download(self, kind: str) -> None:
         """The selected stored version, named after it; the scene on screen when nothing is stored."""
         sid, number = self._selected_scene(), self._selected_version()
-        house, glb = to_house, to_glb
         if self.apartment.current is not None and (sid is None or number is None):
-            scene, house, glb = self.apartment.current, apartment_house, apartment_glb
-            stem = f"{_slug(scene.task_graph.instruction)}-apartment-unsaved"
+            value = self.apartment.current
+            stem = f"{_slug(value.task_graph.instruction)}-apartment-unsaved"
         elif sid is not None and number is not None:
-            scene = self.store.scene(sid, number)
+            value = self.store.scene(sid, number)
             name = next((s["name"] for s in self.store.list_scenes() if s["id"] == sid), f"scene-{sid}")
             stem = f"{_slug(name) or f'scene-{sid}'}-v{number}"
         elif self.state.gen is not None:
-            scene, stem = self.state.gen.scene, f"{_slug(self.state.gen.task_graph.instruction)}-unsaved"
+            value, stem = self.state.gen.scene, f"{_slug(self.state.gen.task_graph.instruction)}-unsaved"
         else:
             self.say("**Error:** Nothing to download: generate or open a scene first.")
             return
         if kind == "house":
-            self.client.send_file_download(f"{stem}-house.json", json.dumps(house(scene), indent=2).encode(),
+            self.client.send_file_download(f"{stem}-house.json", json.dumps(house_of(value), indent=2).encode(),
                                            save_immediately=True)
         else:
-            self.client.send_file_download(f"{stem}.glb", glb(scene), save_immediately=True)
+            self.client.send_file_download(f"{stem}.glb", glb_of(value), save_immediately=True)
         self.say(f"Downloaded `{stem}` ({'house JSON' if kind == 'house' else 'GLB'}).")
 
 

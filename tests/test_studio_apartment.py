@@ -1,5 +1,10 @@
 """The studio's apartment mode in chromium: the whole house with room labels, the robot's path, the step
-animation room by room, downloads; a single room afterwards leaves the apartment mode."""
+animation room by room, accept & save as versions, downloads by version; a single room afterwards leaves
+the apartment mode, and reopening the stored apartment shows the whole house again."""
+
+import json
+import re
+from pathlib import Path
 
 import pytest
 from studio_support import SCREENSHOTS, WAIT, browser, choose, field, open_studio, session_of, studio  # noqa: F401
@@ -36,9 +41,6 @@ def test_apartment_in_the_studio(browser, studio):  # noqa: F811
     fridge = next(o.id for o in session.displayed().objects if o.type == "Fridge")
     session.pick(fridge)  # inspected, not movable: no drag gizmo
     assert session.picked.visible and fridge in session.picked_md.content and session.controls is None
-    session.accept()
-    assert "cannot be stored" in session.status.content
-
     session.animate("Step")  # from the start: the first room's first object
     assert "room 1 / 3 (kitchen)" in session.step_md.content
     rooms_in_order = []
@@ -47,7 +49,35 @@ def test_apartment_in_the_studio(browser, studio):  # noqa: F811
         rooms_in_order.append(session.step_md.content.split("room ")[1][0])
     assert rooms_in_order == sorted(rooms_in_order) and rooms_in_order[-1] == "3"  # room by room
 
+    steps = len(session.state.steps)
+
+    page.get_by_role("tab", name="Scenes").click()
+    field(page, "Name").fill("three rooms")
+    page.get_by_role("button", name="Accept & save").click()
+    saved = page.get_by_text(re.compile(r"Saved as scene \d+, version 1"))
+    saved.wait_for(timeout=WAIT)
+    scene_id = int(re.search(r"scene (\d+)", saved.inner_text()).group(1))
+    assert studio.store.scene(scene_id, 1) == apartment
+    assert field(page, "Stored scene").input_value().startswith(f"{scene_id}:")
+    with page.expect_download() as download:
+        page.get_by_role("button", name="Download house JSON").click()
+    assert download.value.suggested_filename == "three-rooms-v1-house.json"
+    assert [r["id"] for r in json.loads(Path(download.value.path()).read_text())["rooms"]] == \
+        ["room|1", "room|2", "room|3"]
+
+    page.get_by_role("tab", name="Task").click()
     choose(page, "Room type", "kitchen")
     page.get_by_role("button", name="Generate").click()
     page.get_by_text("Scene ready").wait_for(timeout=WAIT)
     assert session.apartment.current is None and session.state.gen is not None
+
+    page.get_by_role("tab", name="Scenes").click()
+    choose(page, "Stored scene", f"{scene_id}: three rooms")
+    page.get_by_role("button", name="Open").click()
+    page.get_by_text(re.compile(rf"Opened scene {scene_id}, version 1")).wait_for(timeout=WAIT)
+    assert session.apartment.current == apartment and session.state.gen is None
+    assert {"/rooms/1. kitchen", "/rooms/3. bedroom", "/markers/path"} <= {h._impl.name for h in session.view.nodes}
+    assert len(session.state.steps) == steps  # each room's placer replayed with the stored seed
+    page.get_by_role("button", name="Accept & save").click()  # the reopened apartment's next version
+    page.get_by_text(re.compile(rf"Saved as scene {scene_id}, version 2")).wait_for(timeout=WAIT)
+    assert [v["number"] for v in studio.store.versions(scene_id)] == [1, 2]
