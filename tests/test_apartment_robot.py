@@ -110,3 +110,17 @@ def test_vr_pose_and_haptics_are_in_the_house(two_rooms):
     assert state.room_at(vr.best.x, vr.best.z) == apartment.anchor_room
     profiles = apartment_haptic_profiles(apartment)
     assert {p.object_id for p in profiles} == house_ids(house)
+
+
+def test_the_house_json_gives_the_floorplans_walkable_floor(pipeline, two_rooms):
+    """Read back from the house JSON (floor polygons, walls, door holes), the free floor reachable from the
+    entrance is cell for cell that of the house-wide navigation grid built from the floorplan value."""
+    from models.energy.house_navigation import house_blocked, house_grid, reachable_from
+    six = pipeline.generate_apartment("Place a chilled mug in a cabinet.", ["living room", "kitchen", "bedroom",
+                                                                              "bathroom", "office", "hallway"], seed=5)
+    for apartment in (two_rooms[0], six):
+        empty = {**apartment_house(apartment), "objects": []}
+        grid = house_grid(apartment.floorplan)
+        start = (apartment.robot_start.x, apartment.robot_start.z)
+        expected = reachable_from(grid, house_blocked(grid, apartment.floorplan, []), start)
+        assert (SymbolicState.from_house(empty).navigation()[1] == expected).all() and expected.sum() > 1000
