@@ -32,7 +32,7 @@ class WrongKind(ValueError):
     """A single room given as the next version of an apartment, or the other way round."""
 
 
-def room_type_of(value: Stored) -> str:
+def _room_type_of(value: Stored) -> str:
     return APARTMENT if isinstance(value, Apartment) else value.room.type
 
 
@@ -83,7 +83,7 @@ class Store:
         """A new scene (a single room or an apartment) with its first version; returns (scene id, version number)."""
         graph = scene.task_graph
         with Session(self.engine) as s, s.begin():
-            row = SceneRow(name=name, instruction=graph.instruction if graph else "", room_type=room_type_of(scene))
+            row = SceneRow(name=name, instruction=graph.instruction if graph else "", room_type=_room_type_of(scene))
             s.add(row)
             s.flush()
             self._add_version(s, row.id, name, scene, seed, solver, edits)

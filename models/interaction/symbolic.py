@@ -170,7 +170,7 @@ class SymbolicState(BaseModel):
 
     def in_room(self, room_id: str | None) -> np.ndarray:
         """Per navigation cell, whether it lies in that room (every cell when the house has no floors)."""
-        grid, reachable = self.navigation()
+        _, reachable = self.navigation()
         if room_id is None or room_id not in self.floors:
             return np.ones_like(reachable)
         return self._rooms == list(self.floors).index(room_id)
