@@ -16,6 +16,8 @@ from app.pipeline import Pipeline
 from models.exports.apartment import apartment_glb, apartment_house
 from models.exports.glb import to_glb
 from models.exports.procthor_house import to_house
+from models.interaction import check_plan, robot_plan
+from models.interaction.apartment import apartment_robot_plan
 from models.metrics import scene_metrics
 from models.planning.apartment_planner import parse_rooms
 
@@ -31,6 +33,7 @@ def main(args) -> int:
     pipeline.generate_apartment(items[0][0], rooms, seed=0)  # warm-up: catalogue load, imports
     totals, singles, per_room, per_object, counts, key_nav, single_nav, skipped = [], [], [], [], [], [], [], 0
     unplaced = objects = 0
+    plan_s, goals, single_goals = [], 0, 0  # the robot's plan on the exported house, checked symbolically
     for i, (instruction, room) in enumerate(items):
         try:
             pipeline.parse(instruction, room)
@@ -39,8 +42,12 @@ def main(args) -> int:
             continue
         t0 = time.perf_counter()
         apartment = pipeline.generate_apartment(instruction, rooms, seed=i)
-        apartment_house(apartment), apartment_glb(apartment)
+        house, _ = apartment_house(apartment), apartment_glb(apartment)
         totals.append(time.perf_counter() - t0)
+        t0 = time.perf_counter()
+        plan = apartment_robot_plan(apartment, house)
+        plan_s.append(time.perf_counter() - t0)
+        goals += check_plan(house, plan, apartment.task_graph).ok
         per_room += [layout.timing.total_s for layout in apartment.layouts]
         per_object += [layout.timing.per_object_s for layout in apartment.layouts]
         counts.append(len(apartment.scenes))
@@ -50,8 +57,9 @@ def main(args) -> int:
                                                                                   apartment.plan.room_plans))
         t0 = time.perf_counter()
         gen = pipeline.generate(instruction, room, seed=i)
-        to_house(gen.scene), to_glb(gen.scene)
+        house, _ = to_house(gen.scene), to_glb(gen.scene)
         singles.append(time.perf_counter() - t0)
+        single_goals += check_plan(house, robot_plan(gen.scene, house), gen.task_graph).ok
         single_nav += [m.key_nav] if (m := scene_metrics(gen.plan, gen.layout)).key_nav is not None else []
     which = f"rooms {', '.join(rooms)}" if rooms else "2-5 rooms drawn from each task and seed"
     print(f"generate --room-type apartment on {len(totals)} ALFRED valid_unseen instructions ({skipped} unparseable "
@@ -66,6 +74,8 @@ def main(args) -> int:
     print(f"  Key_NAV through doors   {100 * statistics.mean(key_nav):5.1f} (mean over {len(key_nav)} apartments; "
           f"{sum(k == 0 for k in key_nav)} at 0)")
     print(f"  unplaced objects        {unplaced} of {objects}")
+    print(f"  robot plan (symbolic)   {_ms(plan_s)}   goal met in {goals} of {len(totals)} "
+          f"(one room: {single_goals} of {len(totals)})")
     print(f"  baseline: one room      {_ms(singles)}   (the task's own room type, same exports) -> apartment / "
           f"room = {quantile(totals, .5) / quantile(singles, .5):.1f}x at p50")
     print(f"                          Key_NAV {100 * statistics.mean(single_nav):5.1f} from its doorway "
