@@ -53,16 +53,19 @@ def test_bad_lines_are_recorded_and_the_batch_goes_on(tmp_path):
         json.dumps({"instruction": "Put a chilled bread on the counter", "room_type": "kitchen", "solver": "nope"}),
         json.dumps({"instruction": "Put a chilled bread on the counter"}),
         json.dumps({"id": "../escape", "instruction": "Put a chilled bread on the counter", "room_type": "kitchen"}),
-        json.dumps({"instruction": "Put a chilled bread on the counter", "room_type": "kitchen", "sead": 3})])
+        json.dumps({"instruction": "Put a chilled bread on the counter", "room_type": "kitchen", "sead": 3}),
+        json.dumps({"instruction": "Do a task with both hands", "room_type": "kitchen"})])  # fails in the pipeline
     out = tmp_path / "out"
     summary = run_batch(source, out, InProcess(), progress=False)
-    assert (summary.total, summary.done, summary.failed) == (8, 2, 6)
+    assert (summary.total, summary.done, summary.failed) == (9, 2, 7)
     rows = results(out)
-    assert [r["line"] for r in rows] == list(range(1, 9))
-    assert [r["status"] for r in rows] == ["ok", "ok"] + ["error"] * 6
+    assert [r["line"] for r in rows] == list(range(1, 10))
+    assert [r["status"] for r in rows] == ["ok", "ok"] + ["error"] * 7
     errors = [r["error"] for r in rows[2:]]
-    assert "line 3: not a JSON object" in errors[0] and "spaceship" in errors[1] and "UnknownSolver" in errors[2]
+    assert "line 3: not a JSON object" in errors[0] and "line 4: room_type" in errors[1] and "spaceship" in errors[1]
+    assert "line 5: solver" in errors[2] and "unknown solver 'nope'" in errors[2]
     assert "room_type" in errors[3] and "cannot name a folder" in errors[4] and "sead" in errors[5]
+    assert errors[6].startswith("InstructionError: no object to pick up") and rows[8]["key"] == "line-000009"
     assert sorted(p.name for p in (out / SCENES).iterdir()) == ["line-000001", "line-000002"]
     ok = rows[0]
     assert ok["placed"] + ok["unplaced"] == ok["n_objects"] > 0 and ok["energy"] is not None
@@ -70,7 +73,7 @@ def test_bad_lines_are_recorded_and_the_batch_goes_on(tmp_path):
 
     import datasets
     table = datasets.load_dataset("json", data_files=str(out / "results.jsonl"), split="train")
-    assert table.num_rows == 8 and table["status"].count("error") == 6
+    assert table.num_rows == 9 and table["status"].count("error") == 7
 
 
 def test_input_that_cannot_start_a_batch_is_refused(tmp_path):
@@ -87,7 +90,7 @@ def test_input_that_cannot_start_a_batch_is_refused(tmp_path):
 
 
 def test_a_rerun_skips_finished_scenes_and_redoes_changed_broken_and_failed_ones(tmp_path):
-    source = write_lines(tmp_path / "in.jsonl", 4, extra=[json.dumps({"instruction": "x", "room_type": "moon"})])
+    source = write_lines(tmp_path / "in.jsonl", 4, extra=[json.dumps({"instruction": "x", "room_type": "kitchen"})])
     out = tmp_path / "out"
     first = run_batch(source, out, InProcess(), progress=False)
     assert (first.done, first.failed) == (4, 1)

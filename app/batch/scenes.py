@@ -27,10 +27,12 @@ import uuid
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from pydantic import BaseModel, ConfigDict, ValidationError
+from pydantic import BaseModel, ConfigDict, ValidationError, field_validator
 
 from app.batch.executors import Done, Executor
 from app.batch.studio import store_scene, stored_names, studio_name
+from models.placement.base import SOLVERS, UnknownSolver
+from models.world.rooms import normalise_room_type
 
 MARKER = "DONE.json"
 RESULTS = "results.jsonl"
@@ -54,6 +56,19 @@ class SceneSpec(BaseModel):
     room_type: str
     seed: int = 0
     solver: str = "dfs"
+
+    @field_validator("room_type")
+    @classmethod
+    def _known_room_type(cls, room_type: str) -> str:
+        normalise_room_type(room_type)  # refused here, before a worker spends time on the line
+        return room_type
+
+    @field_validator("solver")
+    @classmethod
+    def _known_solver(cls, solver: str) -> str:
+        if solver.strip().lower() not in SOLVERS:
+            raise UnknownSolver(solver)
+        return solver
 
 
 @dataclass(frozen=True)
@@ -305,7 +320,7 @@ def run_batch(source: Path, out: Path, executor: Executor, parser: str | None = 
                     summary.done += 1
                 else:
                     summary.failed += 1
-                    summary.errors.append(f"{row['key']}: {row['error']}")
+                    summary.errors.append(f"line {row['line']} ({row['key']}): {row['error']}")
                 bar.set_postfix(done=summary.done + summary.skipped, failed=summary.failed, refresh=False)
                 bar.update(1)
         finally:
