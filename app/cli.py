@@ -172,7 +172,8 @@ def cmd_batch_generate(args) -> int:
     from app.batch.scenes import BatchError, run_batch
     try:
         with executor_from_args(args) as executor:
-            print(f"batch: {args.input} -> {args.out} on {executor.name} ({executor.workers} workers)",
+            plural = "" if executor.workers == 1 else "s"
+            print(f"batch: {args.input} -> {args.out} on {executor.name} ({executor.workers} worker{plural})",
                   file=sys.stderr, flush=True)
             studio = _studio_database() if args.studio else None
             summary = run_batch(Path(args.input), Path(args.out), executor, args.parser, not args.no_progress, studio)
