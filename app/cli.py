@@ -280,7 +280,7 @@ def cmd_train_placement(args) -> int:
     prior = {} if args.prior_temp is None else {"prior_temp": args.prior_temp}
     net = NetConfig(hidden=args.hidden, fusion=args.fusion, sff=not args.no_sff, **prior).as_dict()
     cfg = TrainConfig(episodes=args.episodes, batch=args.batch, lr=args.lr, seed=args.seed,
-                      use_global=not args.no_global, aux=not args.no_aux, net=net)
+                      use_global=not args.no_global, aux=not args.no_aux, net=net, teacher=args.teacher)
     out = Path(args.out)
     ckpt = train(cfg, out)
     runs = {"with global state": out / "train.csv"} | ({"without": Path(args.compare) / "train.csv"}
@@ -412,6 +412,8 @@ def build_parser() -> argparse.ArgumentParser:
     t.add_argument("--episodes", type=int, default=2000)
     t.add_argument("--batch", type=int, default=4, help="episodes per update")
     t.add_argument("--lr", type=float, default=3e-4)
+    t.add_argument("--teacher", type=int, default=0, metavar="N", help="policy advantages from greedy completions "
+                   "of the N lowest-energy candidates and the sampled one per step (not in the paper; 0: off)")
     t.add_argument("--prior-temp", type=float, default=None,
                    help="temperature of the actor's immediate-energy prior (default 0.05; 0: none)")
     t.add_argument("--seed", type=int, default=0)

@@ -14,7 +14,8 @@ from models.datasets import load_dataset  # noqa: E402
 from models.metrics import scene_metrics  # noqa: E402
 from models.placement import PlacementProblem, get_solver  # noqa: E402
 from models.placement.greedy import Episode  # noqa: E402
-from models.placement.plan2place.agent import W_AUX, TrainConfig, losses, plot_curves, rollout, train  # noqa: E402
+from models.placement.plan2place.agent import (  # noqa: E402
+    W_AUX, TrainConfig, judge, losses, plot_curves, rollout, train)
 from models.placement.plan2place.features import CAND_DIM, choose_subset, observe  # noqa: E402
 from models.placement.plan2place.network import NetConfig, Plan2PlaceNet  # noqa: E402
 
@@ -47,6 +48,37 @@ def test_losses_weights_and_gradients():
     with_aux["loss"].backward()
     assert all(p.grad is not None for p in net.actor.parameters())
 
+
+
+def test_a_forked_episode_leaves_the_original_as_it_was():
+    ep = Episode(_plan(3))
+    ep.apply(ep.options(), 0)
+    placed, energy, i = list(ep.placed), ep.energy, ep.i
+    twin = ep.fork()
+    final = twin.finish_greedily()
+    assert twin.done and len(twin.placed) > len(placed) and final == twin.energy
+    assert ep.placed == placed and ep.energy == energy and ep.i == i and not ep.done
+
+
+def test_teacher_judges_candidates_by_greedy_completion():
+    """The greedy pick judged at the first step finishes exactly as a greedy episode from scratch; the
+    teacher's policy loss weights the judged candidates' log-probabilities by their advantages."""
+    plan = _plan(3)
+    ep = Episode(plan)
+    opts = ep.options()
+    greedy_pick = int(np.argmin(opts.terms["total"]))
+    assert judge(ep, opts, [greedy_pick])[0] == pytest.approx(Episode(plan).finish_greedily())
+    torch.manual_seed(0)
+    net = Plan2PlaceNet(NetConfig(hidden=16))
+    _, trace = rollout(net, plan, np.random.default_rng(0), sample=True, grad=True, teacher=3)
+    assert trace and all("judged" in t for t in trace)
+    for logp, adv in (t["judged"] for t in trace):
+        assert len(logp) == len(adv) in (3, 4) and abs(float(adv.sum())) < 1e-5  # advantages about their mean
+    out = losses(trace, True)
+    expected = -torch.stack([(lp * a).sum() for lp, a in (t["judged"] for t in trace)]).mean()
+    assert torch.isclose(out["policy_loss"], expected)
+    out["loss"].backward()
+    assert all(p.grad is not None for p in net.actor.parameters())
 
 def test_training_is_seeded_and_resumes(tmp_path):
     cfg = TrainConfig(episodes=4, batch=2, checkpoint_every=2, net=NetConfig(hidden=16).as_dict())

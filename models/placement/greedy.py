@@ -146,6 +146,19 @@ class Episode:
         self.i += 1
         return reward
 
+    def fork(self) -> Episode:
+        """An independent copy of this episode (its energy set-ups are immutable and are shared)."""
+        twin = copy.copy(self)
+        twin.placed, twin.failed = list(self.placed), dict(self.failed)
+        return twin
+
+    def finish_greedily(self) -> float:
+        """Place the objects still to come at their lowest immediate energy; the final energy."""
+        while not self.done:
+            opts = self.options()
+            self.apply(opts, int(np.argmin(opts.terms["total"])) if len(opts.feasible) else None)
+        return self.energy
+
     def step_record(self, opts: Options, pick: int | None, probs: np.ndarray) -> PlacementStep:
         """What the studio shows: `probs` (M,) over the feasible candidates; -inf for the rest."""
         scores = np.full(len(opts.cands), -np.inf)

@@ -2,7 +2,10 @@
 Adam, gamma 0.99). Seeded, resumable from `checkpoint.pt` in the run directory, CSV log per episode.
 
 Reward per step: the drop of the vectorised energy (objects still to come pending, so the episode's
-return is minus the final layout's energy, E_missing included). The auxiliary loss aligns the critic with
+return is minus the final layout's energy, E_missing included). With `teacher` > 0 (not in the paper)
+the policy loss takes its advantages from greedy completions instead of the sampled return: at each step
+the `teacher` candidates of lowest immediate energy and the sampled one are each placed and the episode
+finished greedily; a candidate's advantage is the judged candidates' mean final energy minus its own. The auxiliary loss aligns the critic with
 the semantic score as the paper does; the score (in [0, 1]) is shifted by -1 onto the return's scale
 (0 for a layout the scorer finds human-like, -1 for one it does not).
 """
@@ -40,6 +43,7 @@ class TrainConfig:
     net: dict = field(default_factory=lambda: NetConfig().as_dict())
     dataset: str = "seen"
     checkpoint_every: int = 20
+    teacher: int = 0  # candidates per step judged by a greedy completion (0: advantages from the return)
 
 
 def semantic_of(ep: Episode) -> tuple[torch.Tensor, float]:
@@ -49,8 +53,18 @@ def semantic_of(ep: Episode) -> tuple[torch.Tensor, float]:
     return torch.from_numpy(s.features), s.score
 
 
+def judge(ep: Episode, opts, picks: list[int]) -> np.ndarray:
+    """Final energy of each feasible candidate in `picks`, the episode finished greedily after it."""
+    finals = []
+    for pick in picks:
+        twin = ep.fork()
+        twin.apply(opts, pick)
+        finals.append(twin.finish_greedily())
+    return np.array(finals)
+
+
 def rollout(net: Plan2PlaceNet, plan, rng: np.random.Generator, sample: bool, use_global: bool = True,
-            fixed=None, observer=None, grad: bool = False) -> tuple[Episode, list[dict]]:
+            fixed=None, observer=None, grad: bool = False, teacher: int = 0) -> tuple[Episode, list[dict]]:
     """One episode; `sample`: draw actions from the policy (training), else take the most probable.
 
     Deterministic and without gradients (the solver), the step needs neither the critic nor the semantic
@@ -81,6 +95,11 @@ def rollout(net: Plan2PlaceNet, plan, rng: np.random.Generator, sample: bool, us
                 probs_all[subset] = torch.softmax(logits.detach(), 0).numpy()
                 trace.append({"logp": dist.log_prob(torch.tensor(a)), "entropy": dist.entropy(), "value": value,
                               "r_vlm": r_vlm, "reward": 0.0})
+                if teacher:  # the subset is sorted by immediate energy: its first `teacher` and the sampled one
+                    judged = sorted(set(range(min(teacher, len(subset)))) | {a})
+                    finals = judge(ep, opts, [int(subset[j]) for j in judged])
+                    trace[-1]["judged"] = (dist.log_prob(torch.tensor(judged)),
+                                           torch.from_numpy(finals.mean() - finals).float())
             pick = int(subset[a])
         reward = ep.apply(opts, pick)
         if trace:  # a fixed or failed step after a decision: its energy change counts for that decision
@@ -115,7 +134,11 @@ def losses(trace: list[dict], aux: bool) -> dict[str, torch.Tensor]:
     ent = torch.stack([t["entropy"] for t in trace])
     adv = ret - value
     target = torch.tensor([t["r_vlm"] - 1.0 for t in trace], dtype=torch.float32)
-    out = {"policy_loss": -(logp * adv.detach()).mean(), "value_loss": adv.pow(2).mean(),
+    if all("judged" in t for t in trace):  # the greedy-completion teacher's advantages
+        policy = -torch.stack([(lp * a).sum() for lp, a in (t["judged"] for t in trace)]).mean()
+    else:
+        policy = -(logp * adv.detach()).mean()
+    out = {"policy_loss": policy, "value_loss": adv.pow(2).mean(),
            "aux_loss": (value - target).pow(2).mean() if aux else torch.zeros(()), "entropy": ent.mean()}
     out["loss"] = W_POLICY * out["policy_loss"] + W_VALUE * out["value_loss"] + W_AUX * out["aux_loss"] \
         - W_ENTROPY * out["entropy"]
@@ -142,7 +165,8 @@ def train(cfg: TrainConfig, out_dir: Path, progress: bool = True) -> Path:
     start = 0
     if ckpt.exists():
         state = torch.load(ckpt, weights_only=False)
-        if state["config"] != asdict(cfg) | {"episodes": state["config"]["episodes"]}:
+        stored = asdict(TrainConfig()) | state["config"]  # options added since the run began take their default
+        if stored != asdict(cfg) | {"episodes": stored["episodes"]}:
             raise ValueError(f"{ckpt} was trained with another configuration: {state['config']}")
         net.load_state_dict(state["net"])
         opt.load_state_dict(state["opt"])
@@ -165,7 +189,8 @@ def train(cfg: TrainConfig, out_dir: Path, progress: bool = True) -> Path:
         for episode in range(start, cfg.episodes):
             t0 = time.perf_counter()
             plan = plans[order[episode % len(plans)]]
-            ep, trace = rollout(net, plan, rng, sample=True, use_global=cfg.use_global, grad=True)
+            ep, trace = rollout(net, plan, rng, sample=True, use_global=cfg.use_global, grad=True,
+                                teacher=cfg.teacher)
             batch.append((ep, trace, plan, t0))
             if len(batch) == cfg.batch or episode == cfg.episodes - 1:
                 parts = [losses(tr, cfg.aux) for _, tr, _, _ in batch if tr]
