@@ -18,10 +18,10 @@ from models.exports.apartment import apartment_house
 from models.exports.stored import glb_of, house_of
 from models.language import InstructionError, check_instruction
 from models.placement import SOLVERS
-from models.planning.apartment_planner import APARTMENT, ApartmentError, is_apartment, parse_rooms
+from models.planning.apartment_planner import ApartmentError, is_apartment, parse_rooms
 from models.planning.floorplan import FloorplanError
 from models.values import Scene
-from models.values.apartment import Apartment
+from models.values.apartment import APARTMENT, Apartment
 from models.world import normalise_room_type
 from studio_db import NotFound, Store
 from studio_db.store import Edit, Stored, WrongKind

@@ -52,7 +52,8 @@ def test_greedy_keeps_fixed_poses_and_its_energy_is_the_judges():
 
 
 def test_fast_hard_filter_is_candidate_scorers():
-    from models.placement.greedy import legal
+    from models.geometry import SweptBoxes
+    from models.placement.greedy import candidate_bodies, hard_filter
     for plan in _plans(4):
         ep = Episode(plan)
         rng = np.random.default_rng(1)
@@ -60,7 +61,9 @@ def test_fast_hard_filter_is_candidate_scorers():
             obj = ep.order[ep.i]
             for strict in (True, False):
                 cands, scores, _ = ep.scorer.evaluate(obj, ep.placed, strict=strict)
-                _, ok = legal(ep.scorer, obj, ep.placed, strict=strict)
+                cands_fast, body = candidate_bodies(ep.scorer, obj)
+                ok, _ = hard_filter(ep.scorer, obj, ep.placed, cands_fast, SweptBoxes(body), strict)
+                assert np.array_equal(cands_fast, cands)
                 assert (ok == np.isfinite(scores)).all()
             opts = ep.options()
             ep.apply(opts, int(rng.integers(len(opts.feasible))) if len(opts.feasible) else None)

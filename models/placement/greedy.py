@@ -37,21 +37,18 @@ class Options:
     soft: np.ndarray  # (M,) the constraint score of candidates.CandidateScorer
 
 
-def legal(scorer: CandidateScorer, obj: PlanObject, placed: list[PlacedObject], strict: bool = True
-          ) -> tuple[np.ndarray, np.ndarray]:
-    """(candidates, mask of those passing the hard filters): the same rules as `CandidateScorer.evaluate`
-    (tested), with a sweep-and-prune broad phase instead of an all-pairs overlap matrix."""
+def candidate_bodies(scorer: CandidateScorer, obj: PlanObject) -> tuple[np.ndarray, np.ndarray]:
+    """(candidate poses, their bodies' boxes): what the hard filter, the soft score and the energy share."""
     cands, blocks = scorer.grid(obj)
-    body = grid_boxes(cands, obj.size.x, obj.size.z, blocks)
-    ok, _ = hard_filter(scorer, obj, placed, cands, SweptBoxes(body), strict)
-    return cands, ok
+    return cands, grid_boxes(cands, obj.size.x, obj.size.z, blocks)
 
 
 def hard_filter(scorer: CandidateScorer, obj: PlanObject, placed: list[PlacedObject], cands: np.ndarray,
                 swept: SweptBoxes, strict: bool = True) -> tuple[np.ndarray, np.ndarray]:
     """(mask of the candidates passing the hard filters, squared overlap areas with the placed bodies summed
     in placed order: the collision term the vectorised energy computes for the same candidates). `swept`:
-    the candidates' bodies."""
+    the candidates' bodies. The same rules as `CandidateScorer.evaluate` (tested), with a sweep-and-prune
+    broad phase instead of an all-pairs overlap matrix."""
     ok = np.ones(len(cands), bool)
     squared = np.zeros(len(cands))
     if not len(cands):
@@ -110,8 +107,7 @@ class Episode:
             terms = self._energy.score(obj, cands)
             return Options(obj, cands, feasible, terms, soft)
         # the candidates' boxes and their sweep structure serve the hard filter, the soft score and the energy
-        cands, blocks = self.scorer.grid(obj)
-        body = grid_boxes(cands, obj.size.x, obj.size.z, blocks)
+        cands, body = candidate_bodies(self.scorer, obj)
         swept = SweptBoxes(body)
         strict = True
         ok, squared = hard_filter(self.scorer, obj, self.placed, cands, swept, True)
