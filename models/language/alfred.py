@@ -127,12 +127,19 @@ def named_types(text: str) -> frozenset[str]:
     from models.language.rule_parser import RuleParser, words_of
     words = words_of(text)
     named = {t for m in RuleParser.shared().mentions(words) for t in m.types}
-    index = _fuzzy_index()
     for w in words:
-        if len(w) >= MIN_FUZZY_CHARS and w not in NOT_MISSPELLINGS and w not in RuleParser.shared().lexicon:
-            for d in _deletes(w):
-                named.update(index.get(d, ()))
+        named.update(misspelt_types(w))
     return frozenset(named)
+
+
+def misspelt_types(word: str) -> frozenset[str]:
+    """The types a word names as a one-edit misspelling of a one-word name of five letters or more
+    (empty for a lexicon word, a short word or a real word such as "place")."""
+    from models.language.rule_parser import RuleParser
+    if len(word) < MIN_FUZZY_CHARS or word in NOT_MISSPELLINGS or word in RuleParser.shared().lexicon:
+        return frozenset()
+    index = _fuzzy_index()
+    return frozenset(t for d in _deletes(word) for t in index.get(d, ()))
 
 
 @cache

@@ -20,9 +20,10 @@ from __future__ import annotations
 
 import math
 
+from models.language.alfred import named_types
 from models.language.base import InstructionError, check_instruction
 from models.language.llm.graph_text import LAMPS, GraphFields, graph_of
-from models.language.llm.parser import LoraParser, named_types
+from models.language.llm.parser import LoraParser
 from models.language.rule_parser import RuleParser
 from models.values import TaskGraph
 from models.world import normalise_room_type
@@ -72,7 +73,7 @@ class CombinedParser:
 
     def merge(self, text: str, room: str | None, ruled: TaskGraph | None, failure: InstructionError | None,
               fields: GraphFields, task_confidence: float = 1.0) -> TaskGraph:
-        named = named_types(self.rules, text)
+        named = named_types(text)
         if ruled is None:
             if fields.target not in named:
                 raise failure  # the model would be guessing an object the instruction does not name

@@ -16,11 +16,11 @@ import re
 import urllib.error
 import urllib.request
 
+from models.language.alfred import named_types
 from models.language.base import InstructionError, check_instruction
 from models.language.llm.decoding import prompt_text
 from models.language.llm.graph_text import (SLICE_WORDS, TASK_WORDS, GraphFields, GraphTextError,
                                             destination_types, graph_of, target_types)
-from models.language.llm.parser import named_types
 from models.values import TaskGraph
 from models.world import normalise_room_type
 
@@ -89,7 +89,7 @@ class OpenAIParser:
             fields = self.read_answer(answer)
         except GraphTextError as e:
             raise InstructionError(f"the served model's answer could not be read ({e})") from e
-        graph = graph_of(fields, text, room or "kitchen", named_types(self.rules, text), self.name)
+        graph = graph_of(fields, text, room or "kitchen", named_types(text), self.name)
         if room is None:
             graph = graph.model_copy(update={"room_type": self.rules.infer_room_type([o.type for o in graph.objects])})
         return graph

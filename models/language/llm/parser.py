@@ -10,12 +10,12 @@ exactly what the base model costs.
 from __future__ import annotations
 
 import json
-import re
 import threading
 import time
 from importlib import resources
 from pathlib import Path
 
+from models.language.alfred import named_types
 from models.language.base import check_instruction
 from models.language.llm.graph_text import GraphFields, graph_of
 from models.values import TaskGraph
@@ -24,12 +24,6 @@ from models.world import normalise_room_type
 
 def default_adapter() -> Path:
     return Path(str(resources.files("models").joinpath("weights/lora")))
-
-
-def named_types(rules, text: str) -> set[str]:
-    """AI2-THOR types the instruction names by any synonym of the lexicon (plurals folded)."""
-    words = re.findall(r"[a-z0-9]+", text.lower().replace("'s", ""))
-    return {t for m in rules.mentions(words) for t in m.types}
 
 
 class LoraParser:
@@ -74,7 +68,7 @@ class LoraParser:
         return self.graph(decoded.fields, text, room)
 
     def graph(self, fields: GraphFields, text: str, room: str | None) -> TaskGraph:
-        graph = graph_of(fields, text, room or "kitchen", named_types(self.rules, text), self.name)
+        graph = graph_of(fields, text, room or "kitchen", named_types(text), self.name)
         if room is None:
             graph = graph.model_copy(update={"room_type": self.rules.infer_room_type([o.type for o in graph.objects])})
         return graph
