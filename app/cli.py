@@ -280,15 +280,16 @@ def cmd_train_placement(args) -> int:
     prior = {} if args.prior_temp is None else {"prior_temp": args.prior_temp}
     net = NetConfig(hidden=args.hidden, fusion=args.fusion, sff=not args.no_sff, **prior).as_dict()
     cfg = TrainConfig(episodes=args.episodes, batch=args.batch, lr=args.lr, seed=args.seed,
-                      use_global=not args.no_global, aux=not args.no_aux, net=net, teacher=args.teacher)
+                      use_global=not args.no_global, aux=not args.no_aux, net=net, teacher=args.teacher,
+                      imitate=args.imitate, init=args.init or "")
     out = Path(args.out)
     ckpt = train(cfg, out)
     runs = {"with global state": out / "train.csv"} | ({"without": Path(args.compare) / "train.csv"}
                                                         if args.compare else {})
     png = plot_curves(runs, out / "curves.png")
-    export_weights(ckpt, out / "plan2place.pt")
+    export_weights(ckpt, out / "plan2place.npz")
     print(f"checkpoint: {ckpt}  log: {out / 'train.csv'}  curves: {png}")
-    print(f"ship it: cp {out / 'plan2place.pt'} models/weights/plan2place/")
+    print(f"ship it: cp {out / 'plan2place.npz'} models/weights/plan2place/")
     return 0
 
 
@@ -414,6 +415,9 @@ def build_parser() -> argparse.ArgumentParser:
     t.add_argument("--lr", type=float, default=3e-4)
     t.add_argument("--teacher", type=int, default=0, metavar="N", help="policy advantages from greedy completions "
                    "of the N lowest-energy candidates and the sampled one per step (not in the paper; 0: off)")
+    t.add_argument("--imitate", type=float, default=0.0, metavar="W", help="with --teacher: weight of the "
+                   "cross-entropy towards the judged candidate of lowest final energy (not in the paper; 0: off)")
+    t.add_argument("--init", default=None, metavar="NPZ", help="start from exported weights (plan2place.npz)")
     t.add_argument("--prior-temp", type=float, default=None,
                    help="temperature of the actor's immediate-energy prior (default 0.05; 0: none)")
     t.add_argument("--seed", type=int, default=0)

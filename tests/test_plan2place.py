@@ -15,7 +15,7 @@ from models.metrics import scene_metrics  # noqa: E402
 from models.placement import PlacementProblem, get_solver  # noqa: E402
 from models.placement.greedy import Episode  # noqa: E402
 from models.placement.plan2place.agent import (  # noqa: E402
-    W_AUX, TrainConfig, judge, losses, plot_curves, rollout, train)
+    W_AUX, TrainConfig, export_weights, judge, losses, plot_curves, rollout, start_from, train)
 from models.placement.plan2place.features import CAND_DIM, choose_subset, observe  # noqa: E402
 from models.placement.plan2place.network import NetConfig, Plan2PlaceNet  # noqa: E402
 
@@ -39,7 +39,7 @@ def test_network_scores_every_candidate(fusion):
 def test_losses_weights_and_gradients():
     torch.manual_seed(0)
     net = Plan2PlaceNet(NetConfig(hidden=32))
-    _, trace = rollout(net, _plan(), np.random.default_rng(0), sample=True, grad=True)
+    _, trace = rollout(net, _plan(), np.random.default_rng(0))
     with_aux, without = losses(trace, True), losses(trace, False)
     assert without["aux_loss"] == 0
     expected = with_aux["policy_loss"] + 0.5 * with_aux["value_loss"] + W_AUX * with_aux["aux_loss"] \
@@ -70,7 +70,7 @@ def test_teacher_judges_candidates_by_greedy_completion():
     assert judge(ep, opts, [greedy_pick])[0] == pytest.approx(Episode(plan).finish_greedily())
     torch.manual_seed(0)
     net = Plan2PlaceNet(NetConfig(hidden=16))
-    _, trace = rollout(net, plan, np.random.default_rng(0), sample=True, grad=True, teacher=3)
+    _, trace = rollout(net, plan, np.random.default_rng(0), teacher=3)
     assert trace and all("judged" in t for t in trace)
     for logp, adv in (t["judged"] for t in trace):
         assert len(logp) == len(adv) in (3, 4) and abs(float(adv.sum())) < 1e-5  # advantages about their mean
@@ -79,6 +79,22 @@ def test_teacher_judges_candidates_by_greedy_completion():
     assert torch.isclose(out["policy_loss"], expected)
     out["loss"].backward()
     assert all(p.grad is not None for p in net.actor.parameters())
+    best = [t["best"] for t in trace]  # the imitation term: the log-probability of the best judged candidate
+    assert all(torch.isclose(t["judged"][0], t["best"]).any() for t in trace)
+    imitating = losses(trace, True, imitate=0.5)
+    assert torch.isclose(imitating["policy_loss"], expected - 0.5 * torch.stack(best).mean())
+
+
+def test_training_starts_from_exported_weights_of_the_same_network_only(tmp_path):
+    cfg = TrainConfig(episodes=2, batch=2, checkpoint_every=2, net=NetConfig(hidden=16).as_dict())
+    export_weights(train(cfg, tmp_path / "a", progress=False), tmp_path / "a.npz")
+    net = Plan2PlaceNet(NetConfig(hidden=16))
+    start_from(net, tmp_path / "a.npz")
+    trained = torch.load(tmp_path / "a" / "checkpoint.pt", weights_only=False)["net"]
+    assert all(torch.allclose(v, trained[k].half().float()) for k, v in net.state_dict().items())
+    with pytest.raises(ValueError, match="network configuration"):
+        start_from(Plan2PlaceNet(NetConfig(hidden=32)), tmp_path / "a.npz")
+
 
 def test_training_is_seeded_and_resumes(tmp_path):
     cfg = TrainConfig(episodes=4, batch=2, checkpoint_every=2, net=NetConfig(hidden=16).as_dict())
@@ -123,7 +139,7 @@ def test_layouts_are_the_known_answer_of_the_code_before_the_speed_work():
     the shared per-step cache and the incremental navigation grid must not change a decision."""
     from app.bench.placement import pick_records
     known = json.loads(KNOWN.read_text())
-    weights = hashlib.sha256((Path(__file__).parents[1] / "models/weights/plan2place/plan2place.pt").read_bytes())
+    weights = hashlib.sha256((Path(__file__).parents[1] / "models/weights/plan2place/plan2place.npz").read_bytes())
     plans = {r.plan.id: r.plan for r in pick_records("seen", 20)}
     assert list(known["plans"]) == [pid for pid in plans][::2]
     for key, want in known["layouts"].items():
@@ -151,9 +167,9 @@ def _observations(n_plans=4):
 
 
 def test_policy_paths_equal_the_networks_forward():
-    from models.placement.plan2place.agent import fast_policy
-    from models.placement.plan2place.solver import shipped_network
-    net = shipped_network()
+    from models.placement.plan2place.agent import fast_policy, network_of
+    from models.placement.plan2place.policy import shipped_weights
+    net = network_of(shipped_weights())
     for _, _, _, obs in _observations():
         with torch.no_grad():
             logits, _ = net(obs, torch.zeros(8))

@@ -1,11 +1,11 @@
 """Does the learning do something? Plan2Place checkpoints against the same network untrained and the
 greedy placer, on the same plans in one run; also the ablation runs (each its own checkpoint).
 
-    h3ds bench plan2place --dataset seen --n 40 --seeds 1 --runs models/weights/plan2place/plan2place.pt
+    h3ds bench plan2place --dataset seen --n 40 --seeds 1 --runs models/weights/plan2place/plan2place.npz
     h3ds bench plan2place --runs runs/main,runs/noglobal,runs/nosff,runs/noaux,runs/concat,runs/h64
 
-A run is a checkpoint file or a training folder (its checkpoint.pt). Figures: the exact energy of the
-final layout (the RL objective; lower is better), the placement metrics x 100, PTO p50 per object.
+A run is exported weights (.npz), a checkpoint file or a training folder (its checkpoint.pt). Figures:
+the exact energy of the final layout (the RL objective; lower is better), the placement metrics x 100, PTO p50 per object.
 """
 
 from __future__ import annotations
@@ -25,14 +25,12 @@ METRICS = [("energy", "energy", 1), ("cnt", "CNT", 100), ("sr", "SR", 100), ("ke
 
 
 def solver_for(run: str):
-    import torch
-
-    from models.placement.plan2place.solver import Plan2PlaceSolver, load_network
+    from models.placement.plan2place.agent import fast_policy, load_run
+    from models.placement.plan2place.solver import Plan2PlaceSolver
     path = Path(run)
-    ckpt = path / "checkpoint.pt" if path.is_dir() else path
-    state = torch.load(ckpt, weights_only=False)
+    net, episodes = load_run(path)
     label = path.name if path.is_dir() else path.stem
-    return Plan2PlaceSolver(load_network(state), name=f"{label} ({state['episode']} ep)")
+    return Plan2PlaceSolver(fast_policy(net), name=f"{label} ({episodes} ep)", use_global=net.use_global)
 
 
 def evaluate(solvers: list, plans: list, seeds: int) -> dict[str, list[dict]]:
@@ -63,7 +61,7 @@ def table(rows: dict[str, list[dict]]) -> str:
 
 def main(args) -> int:
     plans = [r.plan for r in pick_records(args.dataset, args.n)]
-    runs = [r for r in (args.runs or "models/weights/plan2place/plan2place.pt").split(",") if r]
+    runs = [r for r in (args.runs or "models/weights/plan2place/plan2place.npz").split(",") if r]
     solvers = [get_solver("greedy"), get_solver("plan2place_untrained")] + [solver_for(r) for r in runs]
     rows = evaluate(solvers, plans, args.seeds)
     text = (f"plan2place bench on {len(plans)} `{args.dataset}` plans x {args.seeds} seed(s); energy = exact "

@@ -5,7 +5,10 @@ Reward per step: the drop of the vectorised energy (objects still to come pendin
 return is minus the final layout's energy, E_missing included). With `teacher` > 0 (not in the paper)
 the policy loss takes its advantages from greedy completions instead of the sampled return: at each step
 the `teacher` candidates of lowest immediate energy and the sampled one are each placed and the episode
-finished greedily; a candidate's advantage is the judged candidates' mean final energy minus its own. The auxiliary loss aligns the critic with
+finished greedily; a candidate's advantage is the judged candidates' mean final energy minus its own. With
+`imitate` > 0 (not in the paper either) the policy loss also takes the cross-entropy towards the judged
+candidate of lowest final energy: the policy is distilled from a one-step look-ahead over greedy
+completions, which it must then replace at a fraction of its cost. The auxiliary loss aligns the critic with
 the semantic score as the paper does; the score (in [0, 1]) is shifted by -1 onto the return's scale
 (0 for a layout the scorer finds human-like, -1 for one it does not).
 """
@@ -23,7 +26,8 @@ import torch
 
 from models.placement.greedy import Episode
 from models.placement.plan2place.features import choose_subset, observe
-from models.placement.plan2place.network import NetConfig, NumpyPolicy, Plan2PlaceNet
+from models.placement.plan2place.network import Plan2PlaceNet
+from models.placement.plan2place.policy import NetConfig, NumpyPolicy, Policy, Weights
 from models.semantic import default_scorer, items_of
 
 W_POLICY, W_VALUE, W_AUX, W_ENTROPY = 1.0, 0.5, 0.1, 0.01
@@ -44,6 +48,8 @@ class TrainConfig:
     dataset: str = "seen"
     checkpoint_every: int = 20
     teacher: int = 0  # candidates per step judged by a greedy completion (0: advantages from the return)
+    imitate: float = 0.0  # weight of the cross-entropy towards the teacher's best judged candidate
+    init: str = ""  # start from these weights (an exported plan2place.npz) instead of random ones
 
 
 def semantic_of(ep: Episode) -> tuple[torch.Tensor, float]:
@@ -63,53 +69,38 @@ def judge(ep: Episode, opts, picks: list[int]) -> np.ndarray:
     return np.array(finals)
 
 
-def rollout(net: Plan2PlaceNet, plan, rng: np.random.Generator, sample: bool, use_global: bool = True,
-            fixed=None, observer=None, grad: bool = False, teacher: int = 0) -> tuple[Episode, list[dict]]:
-    """One episode; `sample`: draw actions from the policy (training), else take the most probable.
-
-    Deterministic and without gradients (the solver), the step needs neither the critic nor the semantic
-    scorer that feeds it: only the actor's logits, from `fast_policy` (float32 numpy, same decisions)."""
-    ep = Episode(plan, fixed)
+def rollout(net: Plan2PlaceNet, plan, rng: np.random.Generator, use_global: bool = True,
+            teacher: int = 0) -> tuple[Episode, list[dict]]:
+    """One training episode: actions drawn from the policy, with gradients (the solver's deterministic
+    episode, without torch, is `policy.place`)."""
+    ep = Episode(plan)
     trace = []
-    policy = fast_policy(net) if not (grad or sample) else None
     while not ep.done:
         opts = ep.options()
-        pick, probs_all = None, np.zeros(len(opts.feasible))
-        if len(opts.feasible) and opts.obj.id in ep.problem.fixed:
-            pick, probs_all = 0, np.ones(1)
-        elif len(opts.feasible):
+        pick = None
+        if len(opts.feasible):
             subset = choose_subset(opts, rng)
             obs = observe(ep, opts, subset, use_global)
-            if policy is not None:
-                logits = policy(obs)
-                a = int(np.argmax(logits))
-                p = np.exp(logits - logits[a])
-                probs_all[subset] = p / p.sum()
-                trace.append({"reward": 0.0})
-            else:
-                sem, r_vlm = semantic_of(ep) if net.cfg.sff or grad else (None, 0.0)
-                with torch.set_grad_enabled(grad):
-                    logits, value = net(obs, sem)
-                dist = torch.distributions.Categorical(logits=logits)
-                a = int(dist.sample()) if sample else int(torch.argmax(logits))
-                probs_all[subset] = torch.softmax(logits.detach(), 0).numpy()
-                trace.append({"logp": dist.log_prob(torch.tensor(a)), "entropy": dist.entropy(), "value": value,
-                              "r_vlm": r_vlm, "reward": 0.0})
-                if teacher:  # the subset is sorted by immediate energy: its first `teacher` and the sampled one
-                    judged = sorted(set(range(min(teacher, len(subset)))) | {a})
-                    finals = judge(ep, opts, [int(subset[j]) for j in judged])
-                    trace[-1]["judged"] = (dist.log_prob(torch.tensor(judged)),
-                                           torch.from_numpy(finals.mean() - finals).float())
+            sem, r_vlm = semantic_of(ep)
+            logits, value = net(obs, sem)
+            dist = torch.distributions.Categorical(logits=logits)
+            a = int(dist.sample())
+            trace.append({"logp": dist.log_prob(torch.tensor(a)), "entropy": dist.entropy(), "value": value,
+                          "r_vlm": r_vlm, "reward": 0.0})
+            if teacher:  # the subset is sorted by immediate energy: its first `teacher` and the sampled one
+                judged = sorted(set(range(min(teacher, len(subset)))) | {a})
+                finals = judge(ep, opts, [int(subset[j]) for j in judged])
+                trace[-1]["judged"] = (dist.log_prob(torch.tensor(judged)),
+                                       torch.from_numpy(finals.mean() - finals).float())
+                trace[-1]["best"] = dist.log_prob(torch.tensor(judged[int(np.argmin(finals))]))
             pick = int(subset[a])
         reward = ep.apply(opts, pick)
-        if trace:  # a fixed or failed step after a decision: its energy change counts for that decision
+        if trace:  # a failed step after a decision: its energy change counts for that decision
             trace[-1]["reward"] += reward
-        if observer is not None:
-            observer(ep.step_record(opts, pick, probs_all))
     return ep, trace
 
 
-def fast_policy(net: Plan2PlaceNet):
+def fast_policy(net: Plan2PlaceNet) -> Policy:
     """obs -> logits (numpy) for inference: `NumpyPolicy` of the network's current weights (rebuilt when they
     change, e.g. by an optimiser step), or the torch actor for fusions it does not implement."""
     if net.cfg.fusion != "cross":
@@ -117,12 +108,39 @@ def fast_policy(net: Plan2PlaceNet):
     version = tuple(p._version for p in net.parameters())
     cached = getattr(net, "_numpy_policy", None)
     if cached is None or cached[0] != version:
-        cached = (version, NumpyPolicy(net))
+        cached = (version, NumpyPolicy(arrays_of(net), net.cfg))
         net._numpy_policy = cached
     return cached[1]
 
 
-def losses(trace: list[dict], aux: bool) -> dict[str, torch.Tensor]:
+def arrays_of(net: Plan2PlaceNet) -> dict[str, np.ndarray]:
+    return {k: v.detach().float().numpy().copy() for k, v in net.state_dict().items()}
+
+
+def network_of(weights: Weights) -> Plan2PlaceNet:
+    net = Plan2PlaceNet(weights.net)
+    net.load_state_dict({k: torch.from_numpy(v) for k, v in weights.arrays.items()})
+    net.use_global = weights.use_global
+    return net.eval()
+
+
+def load_run(path: Path) -> tuple[Plan2PlaceNet, int]:
+    """(network, episodes trained) of exported weights (.npz), a checkpoint file or a training folder."""
+    if path.suffix == ".npz":
+        w = Weights.load(path)
+        return network_of(w), w.episode
+    state = torch.load(path / "checkpoint.pt" if path.is_dir() else path, weights_only=False)
+    return network_of(Weights({k: v.float().numpy() for k, v in state["net"].items()}, state["config"],
+                              state["episode"])), state["episode"]
+
+
+def untrained_network(seed: int = 0) -> Plan2PlaceNet:
+    """The same network with its initial weights: the baseline that shows what training adds."""
+    torch.manual_seed(seed)
+    return Plan2PlaceNet(NetConfig()).eval()
+
+
+def losses(trace: list[dict], aux: bool, imitate: float = 0.0) -> dict[str, torch.Tensor]:
     rewards = [t["reward"] for t in trace]
     returns, g = [], 0.0
     for r in reversed(rewards):
@@ -136,6 +154,8 @@ def losses(trace: list[dict], aux: bool) -> dict[str, torch.Tensor]:
     target = torch.tensor([t["r_vlm"] - 1.0 for t in trace], dtype=torch.float32)
     if all("judged" in t for t in trace):  # the greedy-completion teacher's advantages
         policy = -torch.stack([(lp * a).sum() for lp, a in (t["judged"] for t in trace)]).mean()
+        if imitate:
+            policy = policy - imitate * torch.stack([t["best"] for t in trace]).mean()
     else:
         policy = -(logp * adv.detach()).mean()
     out = {"policy_loss": policy, "value_loss": adv.pow(2).mean(),
@@ -143,6 +163,15 @@ def losses(trace: list[dict], aux: bool) -> dict[str, torch.Tensor]:
     out["loss"] = W_POLICY * out["policy_loss"] + W_VALUE * out["value_loss"] + W_AUX * out["aux_loss"] \
         - W_ENTROPY * out["entropy"]
     return out
+
+
+def start_from(net: Plan2PlaceNet, weights: Path) -> None:
+    """Load exported weights (.npz) into a fresh network of the same configuration (fine-tuning)."""
+    w = Weights.load(weights)
+    if w.config["net"] != net.cfg.as_dict():
+        raise ValueError(f"{weights} has the network configuration {w.config['net']}, not this run's "
+                         f"{net.cfg.as_dict()}")
+    net.load_state_dict({k: torch.from_numpy(v) for k, v in w.arrays.items()})
 
 
 def save_checkpoint(path: Path, net, opt, cfg: TrainConfig, episode: int, rng: np.random.Generator) -> None:
@@ -173,6 +202,8 @@ def train(cfg: TrainConfig, out_dir: Path, progress: bool = True) -> Path:
         start = state["episode"]
         rng.bit_generator.state = state["rng"]
         torch.set_rng_state(state["torch_rng"])
+    elif cfg.init:
+        start_from(net, Path(cfg.init))
     (out_dir / "config.json").write_text(json.dumps(asdict(cfg), indent=1))
     plans = [r.plan for r in load_dataset(cfg.dataset, "train")]
     order = np.random.default_rng(cfg.seed).permutation(len(plans))
@@ -189,11 +220,10 @@ def train(cfg: TrainConfig, out_dir: Path, progress: bool = True) -> Path:
         for episode in range(start, cfg.episodes):
             t0 = time.perf_counter()
             plan = plans[order[episode % len(plans)]]
-            ep, trace = rollout(net, plan, rng, sample=True, use_global=cfg.use_global, grad=True,
-                                teacher=cfg.teacher)
+            ep, trace = rollout(net, plan, rng, use_global=cfg.use_global, teacher=cfg.teacher)
             batch.append((ep, trace, plan, t0))
             if len(batch) == cfg.batch or episode == cfg.episodes - 1:
-                parts = [losses(tr, cfg.aux) for _, tr, _, _ in batch if tr]
+                parts = [losses(tr, cfg.aux, cfg.imitate) for _, tr, _, _ in batch if tr]
                 if parts:
                     loss = torch.stack([p["loss"] for p in parts]).mean()
                     opt.zero_grad()
@@ -221,10 +251,10 @@ def train(cfg: TrainConfig, out_dir: Path, progress: bool = True) -> Path:
 
 
 def export_weights(ckpt: Path, out: Path) -> None:
-    """The shippable part of a checkpoint: the network's weights in fp16 and its configuration."""
+    """The shippable part of a checkpoint: the network's weights (float16) and its configuration, in the
+    numpy archive the solver reads without torch (`policy.Weights`)."""
     state = torch.load(ckpt, weights_only=False)
-    torch.save({"net": {k: v.half() for k, v in state["net"].items()}, "config": state["config"],
-                "episode": state["episode"]}, out)
+    Weights({k: v.float().numpy() for k, v in state["net"].items()}, state["config"], state["episode"]).save(out)
 
 
 def plot_curves(runs: dict[str, Path], out: Path, window: int = 50) -> Path:

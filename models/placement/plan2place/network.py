@@ -11,26 +11,11 @@ energy of 0.84 against greedy's 0.40 on 12 validation plans (README, Plan2Place)
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass
-
-import numpy as np
 import torch
 from torch import nn
 
 from models.placement.plan2place.features import CAND_DIM, ENERGY_GAP, GLOBAL_DIM, NODE_DIM, Observation
-
-
-@dataclass(frozen=True)
-class NetConfig:
-    hidden: int = 128
-    fusion: str = "cross"  # cross | self | concat
-    sff: bool = True
-    semantic_dim: int = 8
-    heads: int = 4
-    prior_temp: float = 0.05  # logits += -(energy - lowest energy) / prior_temp; 0: no energy prior
-
-    def as_dict(self) -> dict:
-        return asdict(self)
+from models.placement.plan2place.policy import NetConfig
 
 
 class Plan2PlaceNet(nn.Module):
@@ -106,64 +91,3 @@ def _sage(conv, x: torch.Tensor, src: torch.Tensor, dst: torch.Tensor, count: to
     msg = x.index_select(0, src)
     agg = x.new_zeros(len(x), x.shape[1]).scatter_add_(0, dst[:, None].expand_as(msg), msg) / count
     return conv.lin_l(agg) + conv.lin_r(x)
-
-
-class NumpyPolicy:
-    """The actor's logits of a `Plan2PlaceNet` (cross-attention fusion) in float32 numpy: what the solver runs
-    per step. Torch spends ~10-30 us of dispatch per small op on this CPU, about 1 ms per step for ~40 ops;
-    the same arithmetic in numpy takes a fraction of that. It equals `Plan2PlaceNet.policy` up to float32
-    rounding (summation order of the matrix products; tested: same argmax, logits within 1e-4)."""
-
-    def __init__(self, net: Plan2PlaceNet):
-        if net.cfg.fusion != "cross":
-            raise ValueError("NumpyPolicy implements the cross-attention fusion only")
-        w = {k: v.detach().float().numpy().copy() for k, v in net.state_dict().items()}
-        h = net.cfg.hidden
-        self.heads, self.prior_temp, self.h = net.cfg.heads, net.cfg.prior_temp, h
-        t = lambda k: np.ascontiguousarray(w[k].T)  # noqa: E731  (x @ W.T as x @ Wt)
-        self.g0, self.gb0, self.g2, self.gb2 = t("glob.0.weight"), w["glob.0.bias"], t("glob.2.weight"), w["glob.2.bias"]
-        self.s1l, self.s1b, self.s1r = t("sage1.lin_l.weight"), w["sage1.lin_l.bias"], t("sage1.lin_r.weight")
-        self.s2l, self.s2b, self.s2r = t("sage2.lin_l.weight"), w["sage2.lin_l.bias"], t("sage2.lin_r.weight")
-        wi, bi = w["attn.in_proj_weight"], w["attn.in_proj_bias"]
-        self.wq, self.bq = np.ascontiguousarray(wi[:h].T), bi[:h]
-        self.wkv, self.bkv = np.ascontiguousarray(wi[h:].T), bi[h:]
-        self.wo, self.bo = t("attn.out_proj.weight"), w["attn.out_proj.bias"]
-        self.ln_w, self.ln_b = w["ffn.0.weight"], w["ffn.0.bias"]
-        self.f1, self.fb1, self.f3, self.fb3 = t("ffn.1.weight"), w["ffn.1.bias"], t("ffn.3.weight"), w["ffn.3.bias"]
-        self.c0, self.cb0 = t("cand.0.weight"), w["cand.0.bias"]
-        a0 = w["actor.0.weight"]
-        self.a_state, self.a_cand, self.ab0 = np.ascontiguousarray(a0[:, :h].T), np.ascontiguousarray(a0[:, h:].T), \
-            w["actor.0.bias"]
-        self.a2, self.ab2 = w["actor.2.weight"][0], w["actor.2.bias"][0]
-
-    def __call__(self, obs: Observation) -> np.ndarray:
-        relu = lambda v: np.maximum(v, np.float32(0))  # noqa: E731
-        hg = relu(obs.glob @ self.g0 + self.gb0) @ self.g2 + self.gb2
-        x = obs.nodes
-        n = len(x)
-        adj = np.bincount(obs.edges[1] * n + obs.edges[0], minlength=n * n).reshape(n, n).astype(np.float32)
-        adj /= np.maximum(adj.sum(1, keepdims=True), np.float32(1))  # row i: mean over i's in-neighbours
-
-        def sage(v, wl, bl, wr):
-            return (adj @ v) @ wl + bl + v @ wr
-
-        hl = relu(sage(relu(sage(x, self.s1l, self.s1b, self.s1r)), self.s2l, self.s2b, self.s2r))
-        kv = np.concatenate([hl.mean(0, keepdims=True), hl]) @ self.wkv + self.bkv  # (V+1, 2h)
-        h, nh = self.h, self.heads
-        hd = h // nh
-        q = ((hg @ self.wq + self.bq) / np.float32(np.sqrt(hd))).reshape(nh, hd)
-        k, v = kv[:, :h].reshape(-1, nh, hd), kv[:, h:].reshape(-1, nh, hd)
-        s = np.einsum("hd,lhd->hl", q, k)
-        s = np.exp(s - s.max(1, keepdims=True))
-        s /= s.sum(1, keepdims=True)
-        att = np.einsum("hl,lhd->hd", s, v).reshape(h) @ self.wo + self.bo
-        fused = att + hg
-        mu = fused.mean()
-        var = ((fused - mu) ** 2).mean()
-        ln = (fused - mu) / np.sqrt(var + np.float32(1e-5)) * self.ln_w + self.ln_b
-        f = fused + relu(ln @ self.f1 + self.fb1) @ self.f3 + self.fb3
-        c = relu(obs.cands @ self.c0 + self.cb0)
-        logits = relu(c @ self.a_cand + (f @ self.a_state + self.ab0)) @ self.a2 + self.ab2
-        if self.prior_temp > 0:
-            logits = logits - obs.cands[:, ENERGY_GAP] / np.float32(self.prior_temp)
-        return logits
