@@ -17,7 +17,7 @@ from app.pipeline import Pipeline, dump
 from models.exports.apartment import apartment_house
 from models.exports.stored import glb_of, house_of
 from models.language import InstructionError, check_instruction
-from models.placement import SOLVERS
+from models.placement import DEFAULT_SOLVER, SOLVERS
 from models.planning.apartment_planner import ApartmentError, is_apartment, parse_rooms
 from models.planning.floorplan import FloorplanError
 from models.values import Scene
@@ -40,7 +40,7 @@ class GenerateRequest(BaseModel):
                            AfterValidator(check_instruction)]
     room_type: Annotated[str, Field(examples=["kitchen"]), AfterValidator(_room_type)]
     seed: int = Field(0, ge=0, le=2**31 - 1)
-    solver: Annotated[str, AfterValidator(_known_solver)] = "dfs"
+    solver: Annotated[str, AfterValidator(_known_solver)] = DEFAULT_SOLVER
     rooms: Annotated[list[str] | None, Field(max_length=100, examples=[["kitchen", "living room", "bedroom"]]),
                      AfterValidator(parse_rooms)] = None  # room_type "apartment" only
 
@@ -63,7 +63,7 @@ class AcceptRequest(BaseModel):
     scene: Scene | None = None
     apartment: Apartment | None = None
     seed: int = Field(0, ge=0)
-    solver: str = Field("dfs", min_length=1, max_length=40)
+    solver: str = Field(DEFAULT_SOLVER, min_length=1, max_length=40)
     edits: list[EditIn] = Field(default_factory=list)
 
     @model_validator(mode="after")

@@ -13,7 +13,7 @@ from pathlib import Path
 from pydantic import ValidationError
 
 from models.language import InstructionError
-from models.placement import UnknownSolver
+from models.placement import DEFAULT_SOLVER, SOLVERS, UnknownSolver
 from models.planning.apartment_planner import ApartmentError, is_apartment, parse_rooms
 from models.planning.floorplan import FloorplanError
 from models.world import ROOM_TYPES, UnknownRoomType
@@ -33,6 +33,8 @@ class BadInput(Exception):
 class Parser(argparse.ArgumentParser):
     def error(self, message: str):  # one line instead of argparse's usage block
         raise BadInput(message)
+
+SOLVER_HELP = f"placer: {DEFAULT_SOLVER} (default); one of {', '.join(sorted(SOLVERS))}"
 
 
 def _plan_error(path: str, err: Exception) -> BadInput:
@@ -320,7 +322,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     p = sub.add_parser("place", help="place the objects of constraint plan(s) -> layout JSON")
     p.add_argument("plans", nargs="+", metavar="PLAN.json")
-    p.add_argument("--solver", default=None, help="placer: dfs (default); milp, z3 and plan2place as they land")
+    p.add_argument("--solver", default=None, help=SOLVER_HELP)
     p.add_argument("--seed", type=int, default=0)
     p.add_argument("--out", metavar="LAYOUT.json", help="write the layout here instead of stdout")
     p.add_argument("--out-dir", metavar="DIR", help="for several plans: DIR/<plan id>.json each")
@@ -332,7 +334,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--rooms", default=None, help='with --room-type apartment: the rooms, e.g. "kitchen, living room, '
                    'bedroom, bathroom" (at most 8; default: 2-5 rooms chosen from the task and the seed)')
     p.add_argument("--seed", type=int, default=0, help="same seed, same scene")
-    p.add_argument("--solver", default=None)
+    p.add_argument("--solver", default=None, help=SOLVER_HELP)
     p.add_argument("--out", required=True, metavar="DIR")
     p.add_argument("--parser", choices=["combined", "rules", "lora", "openai"], default=None,
                    help="instruction parser (default: combined = rules + the LoRA language model)")

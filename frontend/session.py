@@ -34,7 +34,7 @@ from models.exports.glb import ROLE_COLOURS
 from models.exports.stored import glb_of, house_of
 from models.language import InstructionError
 from models.metrics import SceneMetrics
-from models.placement import SOLVERS, PlacementStep
+from models.placement import DEFAULT_SOLVER, SOLVERS, PlacementStep
 from models.values import Scene, TaskGraph, TaskObject
 from models.values.apartment import APARTMENT, Apartment
 from models.world import ROOM_TYPES, catalogue
@@ -46,7 +46,6 @@ ROLE_MARK = {role: f'<span style="color:rgb{tuple(ROLE_COLOURS[role][:3])}">&#96
 ROLE_CHOICES = ("key", "anchor", "inference", "key + anchor", "anchor + inference")
 ENERGY_TERMS = ("rel", "collision", "oob", "nav", "aff", "total")
 DEFAULT_INSTRUCTION = "Put a chilled bread on the counter"
-DEFAULT_SOLVER = "dfs"
 LIVE_RESCORE_S = 0.3
 PROGRESS_S = 0.2  # the progress line is updated at most this often while placing
 UNSAVED_JS = """

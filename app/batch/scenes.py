@@ -31,7 +31,7 @@ from pydantic import BaseModel, ConfigDict, ValidationError, field_validator
 
 from app.batch.executors import Done, Executor
 from app.batch.studio import store_scene, stored_names, studio_name
-from models.placement.base import SOLVERS, UnknownSolver
+from models.placement.base import DEFAULT_SOLVER, SOLVERS, UnknownSolver
 from models.world.rooms import normalise_room_type
 
 MARKER = "DONE.json"
@@ -55,7 +55,7 @@ class SceneSpec(BaseModel):
     instruction: str
     room_type: str
     seed: int = 0
-    solver: str = "dfs"
+    solver: str = DEFAULT_SOLVER
 
     @field_validator("room_type")
     @classmethod
