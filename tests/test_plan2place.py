@@ -136,7 +136,9 @@ KNOWN = Path(__file__).parent / "fixtures" / "plan2place_known_layouts.json"
 def test_layouts_are_the_known_answer_of_the_code_before_the_speed_work():
     """Poses (and every step's immediate energy) of greedy, plan2place and plan2place_untrained on 10 `seen`
     plans x 2 seeds, recorded with the code before the speed work (commit 82c82be): the numpy network,
-    the shared per-step cache and the incremental navigation grid must not change a decision."""
+    the shared per-step cache and the incremental navigation grid must not change a decision. The
+    plan2place entries are re-recorded for each new shipped network by `record_plan2place`, with the torch
+    network's own forward pass (the numpy actor the solver runs must decide as it does)."""
     from app.bench.placement import pick_records
     known = json.loads(KNOWN.read_text())
     weights = hashlib.sha256((Path(__file__).parents[1] / "models/weights/plan2place/plan2place.npz").read_bytes())
@@ -144,13 +146,40 @@ def test_layouts_are_the_known_answer_of_the_code_before_the_speed_work():
     assert list(known["plans"]) == [pid for pid in plans][::2]
     for key, want in known["layouts"].items():
         name, seed, pid = key.split("/")
-        if name == "plan2place" and weights.hexdigest() != known["weights_sha256"]:
-            continue  # new shipped weights: re-record the fixture with the code before a speed change
+        if name == "plan2place":
+            assert weights.hexdigest() == known["weights_sha256"], "new weights: python tests/test_plan2place.py"
         steps = []
         layout = get_solver(name).solve(plans[pid], seed=int(seed), observer=steps.append)
         assert sorted([p.id, p.x, p.z, p.rotation] for p in layout.placements) == want["poses"], key
         assert sorted([u.id, u.reason] for u in layout.unplaced) == want["unplaced"], key
         assert [round(s.terms["total"], 9) if "total" in s.terms else None for s in steps] == want["step_totals"], key
+
+
+def record_plan2place() -> None:
+    """Re-record the fixture's plan2place entries with the shipped weights run by the torch network."""
+    from app.bench.placement import pick_records
+    from models.placement.plan2place.agent import network_of
+    from models.placement.plan2place.policy import shipped_weights
+    from models.placement.plan2place.solver import Plan2PlaceSolver
+    known = json.loads(KNOWN.read_text())
+    net = network_of(shipped_weights())
+    solver = Plan2PlaceSolver(lambda obs: net.policy(obs).numpy(), use_global=net.use_global)
+    plans = {r.plan.id: r.plan for r in pick_records("seen", 20)}
+    for key in [k for k in known["layouts"] if k.startswith("plan2place/")]:
+        _, seed, pid = key.split("/")
+        steps = []
+        layout = solver.solve(plans[pid], seed=int(seed), observer=steps.append)
+        known["layouts"][key] = {
+            "poses": sorted([p.id, p.x, p.z, p.rotation] for p in layout.placements),
+            "unplaced": sorted([u.id, u.reason] for u in layout.unplaced),
+            "step_totals": [round(s.terms["total"], 9) if "total" in s.terms else None for s in steps]}
+    weights = Path(__file__).parents[1] / "models/weights/plan2place/plan2place.npz"
+    known["weights_sha256"] = hashlib.sha256(weights.read_bytes()).hexdigest()
+    known["plan2place_recorded_with"] = "tests/test_plan2place.py record_plan2place (the torch forward pass)"
+    head = {k: v for k, v in known.items() if k != "layouts"}
+    lines = [f" {json.dumps(k)}: {json.dumps(v)}," for k, v in head.items()]
+    rows = [f"  {json.dumps(k)}: {json.dumps(v, separators=(',', ':'))}" for k, v in known["layouts"].items()]
+    KNOWN.write_text("{\n" + "\n".join(lines) + '\n "layouts": {\n' + ",\n".join(rows) + "\n }\n}\n")
 
 
 def _observations(n_plans=4):
@@ -237,3 +266,7 @@ def test_vectorised_observation_equals_the_loops():
     for ep, opts, subset, obs in _observations():
         nodes, edges = _observe_reference(ep, opts, subset)
         assert np.array_equal(obs.nodes, nodes) and np.array_equal(obs.edges, edges)
+
+
+if __name__ == "__main__":
+    record_plan2place()
