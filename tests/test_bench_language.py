@@ -1,0 +1,40 @@
+"""`h3ds bench language` scores from cached model readings, without loading the model."""
+
+import json
+
+from app.bench.language import lora_readings, read_all, reviewed_rows, score_parsers, unseen_train_rows
+from models.datasets.language_sets import load_language_set
+from models.language import RuleParser
+from models.language.combined import CombinedParser, rule_fields
+
+
+def test_cached_readings_are_scored_without_the_model(tmp_path):
+    rows = load_language_set("id_eval")[:20]
+    cache = tmp_path / "readings.jsonl"
+    with open(cache, "w") as f:  # a model that writes the label: lora scores 100 %
+        for r in rows:
+            fields = rule_fields(r.label)
+            f.write(json.dumps({"text": " ".join(r.instruction.split()), "room": r.room_type, "seconds": 0.5,
+                                "fields": [fields.task_type, fields.sliced, fields.target, fields.destination],
+                                "logprob": [0.0, 0.0, 0.0, 0.0]}) + "\n")
+
+    class NoModel:
+        def load(self):
+            raise AssertionError("every reading is cached; the model must not load")
+
+    readings = lora_readings(rows, NoModel(), cache, progress=False)
+    rules = RuleParser()
+    graphs, seconds = read_all(rows, readings, rules, {"combined": CombinedParser(rules=rules)})
+    scored = score_parsers(rows, graphs, seconds)
+    assert scored["lora"]["object_f1"] == scored["lora"]["irecall"] == 1.0 and scored["lora"]["ged"] == 0
+    assert scored["lora"]["key_accuracy"] == scored["lora"]["anchor_accuracy"] == 1.0
+    assert scored["rules"]["object_f1"] < 1.0 and 500 <= scored["lora"]["p50_ms"] < 501
+    assert set(scored) == {"rules", "lora", "combined"}
+
+
+def test_policy_rows_are_unseen_by_the_adapter_and_the_review_has_100_rows():
+    rows = unseen_train_rows(50)
+    assert len(rows) == 50 and len({r.source for r in rows}) == 50
+    assert len(unseen_train_rows()) > 5000  # 0.45 epoch of 10,738 rows trained; the rest never seen
+    review = reviewed_rows()
+    assert len(review) == 100 and sum(ok for _, ok in review) == 80
