@@ -38,3 +38,17 @@ def test_policy_rows_are_unseen_by_the_adapter_and_the_review_has_100_rows():
     assert len(unseen_train_rows()) > 5000  # 0.45 epoch of 10,738 rows trained; the rest never seen
     review = reviewed_rows()
     assert len(review) == 100 and sum(ok for _, ok in review) == 80
+
+
+def test_room_type_by_embedding_similarity(monkeypatch):
+    from types import SimpleNamespace
+
+    import models.language.room_type as room_type
+    monkeypatch.setattr(room_type, "K", 1)
+    memory = [SimpleNamespace(instruction=t, room_type=room) for room, texts in {
+        "kitchen": ["Put the chilled apple on the counter", "Heat a mug in the microwave", "Slice the bread"],
+        "bathroom": ["Put the soap bar in the bathtub", "Hang the towel by the sink", "Put toilet paper on the toilet"],
+    }.items() for t in texts]
+    knn = room_type.EmbeddingRoomType(memory)
+    assert knn.predict(["Put a chilled apple on the countertop", "Put the bar of soap in the bathtub"]) == \
+        ["kitchen", "bathroom"]
