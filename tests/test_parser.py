@@ -97,6 +97,7 @@ def test_hard_input_is_flagged_uncertain_with_a_message(parser, text, flag):
     ("Mets la pomme dans le frigo", "does not look like English"),
     ("りんごを冷蔵庫に入れて", "does not look like English"),
     ("Put the zebra on the table", "no object to pick up"),
+    ("The scene is ready, could not state it", "no object to pick up"),  # "ready"/"state" misspell no object
     ("put the apple on the table " * 400, "characters long"),
 ])
 def test_hard_input_without_a_reading_is_a_clear_error(parser, text, message):

@@ -41,6 +41,7 @@ DETERMINERS = {"the", "a", "an", "my", "your", "this", "that", "some", "one"}
 STOPWORDS_AFTER = {"the", "a", "an", "it", "its", "my", "your", "this", "that", "some", "one", "top", "of", "front",
                    "inside", "away", "back", "there", "here", "place", "position"}
 MAX_PHRASE_WORDS = 4
+MIN_MISSPELT_CHARS = 6  # shorter words meet too many real ones ("ready" / "bread")
 # Common English words of household instructions: a text of several words with none of them (or mostly
 # non-ASCII letters) is taken to be in another language.
 ENGLISH_WORDS = {"the", "a", "an", "on", "in", "into", "to", "and", "of", "it", "then", "put", "place", "take",
@@ -113,12 +114,16 @@ class RuleParser:
                 i += 1
         return found
 
-    @staticmethod
-    def _with_misspellings(words: list[str], found: list[Mention]) -> list[Mention]:
-        """`found` plus the words outside it that misspell one object name ("refrigerater", "tomatoe")."""
+    def _with_misspellings(self, words: list[str], found: list[Mention]) -> list[Mention]:
+        """`found` plus the words outside it of MIN_MISSPELT_CHARS letters or more that misspell the name of
+        a receptacle or appliance ("refrigerater", "micowave"). Only those: a misspelt target would let a
+        text naming no object ("could not state it") read as one."""
         covered = {i for m in found for i in range(m.start, m.end)}
-        extra = [Mention(i, i + 1, tuple(sorted(types)), tuple(words[max(0, i - 3):i]))
-                 for i, w in enumerate(words) if i not in covered and (types := misspelt_types(w))]
+        extra = []
+        for i, w in enumerate(words):
+            types = tuple(sorted(t for t in misspelt_types(w) if not self._pickupable(t)))
+            if i not in covered and len(w) >= MIN_MISSPELT_CHARS and types:
+                extra.append(Mention(i, i + 1, types, tuple(words[max(0, i - 3):i])))
         return sorted(found + extra, key=lambda m: m.start)
 
     def _pickupable(self, type_name: str) -> bool:
