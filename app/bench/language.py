@@ -223,7 +223,8 @@ def main(args) -> int:
     lines += [f"| {n} | " + " | ".join(f"{100 * r[n]['object_f1']:.2f} / {100 * r[n]['irecall']:.2f} / {r[n]['ged']:.2f}"
                                        for r in scored_review.values()) + " |" for n in ["rules", "lora", *combined]]
     if args.decoding:
-        rows = load_language_set("id_eval")
+        from models.language.alfred import load_annotations
+        rows = load_annotations("valid_seen")  # = id_eval, as ALFRED annotations (the training targets' form)
         lines += [""] + compare_decoding(rows[::max(1, len(rows) // args.decoding)][:args.decoding], lm)
     print("\n".join(lines))
     RESULTS.mkdir(exist_ok=True)
