@@ -38,6 +38,8 @@ def test_alfred_task_semantics(parser, text, task, objects):
     ("slice some bread and heat it up in the microwave, next dispose of it", "Bread", "GarbageCan", True),
     ("Examine a piece of a vase by the light of a floor lamp.", "Vase", "FloorLamp", False),  # vases are not cut
     ("Put the apple in the refrigerater", "Apple", "Fridge", False),  # a misspelt receptacle
+    # the floor is the room's structure, never the destination (it has no asset to place)
+    ("Put a heated potato in the garbage can on the floor, next to the kitchen Island.", "Potato", "GarbageCan", False),
 ])
 def test_destination_landmarks_lamps_slicing_and_misspellings(parser, text, target, destination, sliced):
     g = parser.parse(text, "kitchen")

@@ -314,7 +314,7 @@ class RuleParser:
     def _receptacle(self, mentions: list[Mention], target: Mention, appliance: str | None) -> str | None:
         candidates = [m for m in mentions if m is not target and not any(self._pickupable(t) for t in m.types)
                       and not set(m.types) & set(LAMPS) and not (set(m.before[-1:]) & SOURCE_WORDS)
-                      and m.types[0] in self.cat]
+                      and m.types[0] in self.cat and self.cat.host(m.types[0]).assets]  # not the floor: structure
         # a cooled or heated object never stays in the fridge or microwave (ALFRED: 0 of 5,569 train rows)
         candidates = [m for m in candidates if m.types[0] != appliance]
         if not candidates:
