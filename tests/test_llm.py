@@ -37,6 +37,7 @@ def test_compact_form_round_trips_every_alfred_label():
     ("cool | whole | Baguette | CounterTop", "not a pickupable"),
     ("look | whole | Book | CounterTop", "not allowed for a look task"),
     ("place | whole | Fridge | CounterTop", "not a pickupable"),
+    ("place | whole | Apple | Floor", "not allowed for a place task"),  # the room's structure: nothing to place
 ])
 def test_invalid_model_output_is_refused_with_the_reason(text, problem):
     with pytest.raises(GraphTextError, match=problem):

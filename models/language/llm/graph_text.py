@@ -69,10 +69,12 @@ def target_types() -> tuple[str, ...]:
 
 def destination_types(task_type: str | None = None) -> tuple[str, ...]:
     """Catalogue types allowed as the destination: the lamps for a look-at task, else any type that is
-    not a lamp (small receptacles such as a plate or a pot included)."""
+    not a lamp (small receptacles such as a plate or a pot included) and not part of the room's
+    structure (the floor, a mirror: no asset to place)."""
     if task_type == "look_at_obj_in_light":
         return LAMPS
-    return tuple(sorted(t for t in catalogue().types if t not in LAMPS))
+    cat = catalogue()
+    return tuple(sorted(t for t in cat.types if t not in LAMPS and cat.host(t).assets))
 
 
 def fields_of(row: Annotation) -> GraphFields:
