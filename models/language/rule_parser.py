@@ -121,8 +121,10 @@ class RuleParser:
         covered = {i for m in found for i in range(m.start, m.end)}
         extra = []
         for i, w in enumerate(words):
+            if i in covered or len(w) < MIN_MISSPELT_CHARS:
+                continue
             types = tuple(sorted(t for t in misspelt_types(w) if not self._pickupable(t)))
-            if i not in covered and len(w) >= MIN_MISSPELT_CHARS and types:
+            if types:
                 extra.append(Mention(i, i + 1, types, tuple(words[max(0, i - 3):i])))
         return sorted(found + extra, key=lambda m: m.start)
 
@@ -314,7 +316,7 @@ class RuleParser:
     def _receptacle(self, mentions: list[Mention], target: Mention, appliance: str | None) -> str | None:
         candidates = [m for m in mentions if m is not target and not any(self._pickupable(t) for t in m.types)
                       and not set(m.types) & set(LAMPS) and not (set(m.before[-1:]) & SOURCE_WORDS)
-                      and m.types[0] in self.cat and self.cat.host(m.types[0]).assets]  # not the floor: structure
+                      and m.types[0] in self.cat and self.cat.placeable(m.types[0])]
         # a cooled or heated object never stays in the fridge or microwave (ALFRED: 0 of 5,569 train rows)
         candidates = [m for m in candidates if m.types[0] != appliance]
         if not candidates:

@@ -108,6 +108,11 @@ class Catalogue:
     def is_floor_object(self, name: str) -> bool:
         return self.host(name).on_floor
 
+    def placeable(self, name: str) -> bool:
+        """The type has a real asset (its own or its host's): not part of the room's structure (the floor,
+        a mirror, curtains), which no planner can place."""
+        return bool(self.host(name).assets)
+
     def pick_asset(self, name: str, rng: random.Random, fits: tuple[float, float] | None = None) -> Asset:
         """A real asset of the type (or its host); with `fits`, the one whose footprint is closest to it."""
         assets = self.host(name).assets

@@ -74,7 +74,7 @@ def destination_types(task_type: str | None = None) -> tuple[str, ...]:
     if task_type == "look_at_obj_in_light":
         return LAMPS
     cat = catalogue()
-    return tuple(sorted(t for t in cat.types if t not in LAMPS and cat.host(t).assets))
+    return tuple(sorted(t for t in cat.types if t not in LAMPS and cat.placeable(t)))
 
 
 def fields_of(row: Annotation) -> GraphFields:

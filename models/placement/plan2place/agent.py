@@ -117,9 +117,18 @@ def arrays_of(net: Plan2PlaceNet) -> dict[str, np.ndarray]:
     return {k: v.detach().float().numpy().copy() for k, v in net.state_dict().items()}
 
 
+def checkpoint_weights(state: dict) -> Weights:
+    """The network part of a training checkpoint (as `torch.load` reads it)."""
+    return Weights({k: v.float().numpy() for k, v in state["net"].items()}, state["config"], state["episode"])
+
+
+def _load(net: Plan2PlaceNet, weights: Weights) -> None:
+    net.load_state_dict({k: torch.from_numpy(v) for k, v in weights.arrays.items()})
+
+
 def network_of(weights: Weights) -> Plan2PlaceNet:
     net = Plan2PlaceNet(weights.net)
-    net.load_state_dict({k: torch.from_numpy(v) for k, v in weights.arrays.items()})
+    _load(net, weights)
     net.use_global = weights.use_global
     return net.eval()
 
@@ -130,8 +139,7 @@ def load_run(path: Path) -> tuple[Plan2PlaceNet, int]:
         w = Weights.load(path)
         return network_of(w), w.episode
     state = torch.load(path / "checkpoint.pt" if path.is_dir() else path, weights_only=False)
-    return network_of(Weights({k: v.float().numpy() for k, v in state["net"].items()}, state["config"],
-                              state["episode"])), state["episode"]
+    return network_of(checkpoint_weights(state)), state["episode"]
 
 
 def untrained_network(seed: int = 0) -> Plan2PlaceNet:
@@ -171,7 +179,7 @@ def start_from(net: Plan2PlaceNet, weights: Path) -> None:
     if w.config["net"] != net.cfg.as_dict():
         raise ValueError(f"{weights} has the network configuration {w.config['net']}, not this run's "
                          f"{net.cfg.as_dict()}")
-    net.load_state_dict({k: torch.from_numpy(v) for k, v in w.arrays.items()})
+    _load(net, w)
 
 
 def save_checkpoint(path: Path, net, opt, cfg: TrainConfig, episode: int, rng: np.random.Generator) -> None:
@@ -253,8 +261,7 @@ def train(cfg: TrainConfig, out_dir: Path, progress: bool = True) -> Path:
 def export_weights(ckpt: Path, out: Path) -> None:
     """The shippable part of a checkpoint: the network's weights (float16) and its configuration, in the
     numpy archive the solver reads without torch (`policy.Weights`)."""
-    state = torch.load(ckpt, weights_only=False)
-    Weights({k: v.float().numpy() for k, v in state["net"].items()}, state["config"], state["episode"]).save(out)
+    checkpoint_weights(torch.load(ckpt, weights_only=False)).save(out)
 
 
 def plot_curves(runs: dict[str, Path], out: Path, window: int = 50) -> Path:
