@@ -283,7 +283,7 @@ def cmd_train_placement(args) -> int:
     net = NetConfig(hidden=args.hidden, fusion=args.fusion, sff=not args.no_sff, **prior).as_dict()
     cfg = TrainConfig(episodes=args.episodes, batch=args.batch, lr=args.lr, seed=args.seed,
                       use_global=not args.no_global, aux=not args.no_aux, net=net, teacher=args.teacher,
-                      imitate=args.imitate, init=args.init or "")
+                      imitate=args.imitate, init=args.init or "", dataset=args.dataset)
     out = Path(args.out)
     ckpt = train(cfg, out)
     runs = {"with global state": out / "train.csv"} | ({"without": Path(args.compare) / "train.csv"}
@@ -410,7 +410,7 @@ def build_parser() -> argparse.ArgumentParser:
     t.add_argument("--limit", type=int, default=None, help="train on the first N examples only")
     t.add_argument("--threads", type=int, default=None, help="torch CPU threads")
     t.set_defaults(run=cmd_train_language)
-    t = train.add_parser("placement", help="actor-critic training of Plan2Place on the seen training split")
+    t = train.add_parser("placement", help="actor-critic training of Plan2Place on the seen training instructions")
     t.add_argument("--out", default="runs/placement", metavar="DIR", help="checkpoint.pt, train.csv, curves.png")
     t.add_argument("--episodes", type=int, default=2000)
     t.add_argument("--batch", type=int, default=4, help="episodes per update")
@@ -420,6 +420,8 @@ def build_parser() -> argparse.ArgumentParser:
     t.add_argument("--imitate", type=float, default=0.0, metavar="W", help="with --teacher: weight of the "
                    "cross-entropy towards the judged candidate of lowest final energy (not in the paper; 0: off)")
     t.add_argument("--init", default=None, metavar="NPZ", help="start from exported weights (plan2place.npz)")
+    t.add_argument("--dataset", default="seen", choices=["seen", "varied"], help="the seen training split, or "
+                   "its instructions replanned per episode in rooms of random size and density (not in the paper)")
     t.add_argument("--prior-temp", type=float, default=None,
                    help="temperature of the actor's immediate-energy prior (default 0.05; 0: none)")
     t.add_argument("--seed", type=int, default=0)

@@ -11,6 +11,7 @@ import pytest
 torch = pytest.importorskip("torch")
 
 from models.datasets import load_dataset  # noqa: E402
+from models.datasets.varied import varied_plan  # noqa: E402
 from models.metrics import scene_metrics  # noqa: E402
 from models.placement import PlacementProblem, get_solver  # noqa: E402
 from models.placement.greedy import Episode  # noqa: E402
@@ -107,6 +108,14 @@ def test_training_is_seeded_and_resumes(tmp_path):
     assert [r["plan"] for r in a] == [r["plan"] for r in b]
     assert [r["return"] for r in a] == [r["return"] for r in b]
     assert plot_curves({"x": tmp_path / "a" / "train.csv"}, tmp_path / "c.png").stat().st_size > 1000
+
+
+def test_training_on_varied_rooms_replans_the_episode_it_resumes_at(tmp_path):
+    cfg = TrainConfig(episodes=3, batch=3, checkpoint_every=3, net=NetConfig(hidden=16).as_dict(), dataset="varied")
+    train(cfg, tmp_path / "a", progress=False)
+    rows = list(csv.DictReader((tmp_path / "a" / "train.csv").open()))
+    assert [r["plan"] for r in rows] == [varied_plan(0, e).id for e in range(3)]
+    assert [int(r["objects"]) for r in rows] == [len(varied_plan(0, e).objects) for e in range(3)]
 
 
 def test_solver_steps_are_the_policy_and_fixed_poses_are_kept():

@@ -18,17 +18,21 @@ from __future__ import annotations
 import csv
 import json
 import time
+from collections.abc import Callable
 from dataclasses import asdict, dataclass, field
+from functools import partial
 from pathlib import Path
 
 import numpy as np
 import torch
 
+from models.datasets.varied import NAME as VARIED, varied_plan
 from models.placement.greedy import Episode
 from models.placement.plan2place.features import choose_subset, observe
 from models.placement.plan2place.network import Plan2PlaceNet
 from models.placement.plan2place.policy import NetConfig, NumpyPolicy, Policy, Weights
 from models.semantic import default_scorer, items_of
+from models.values import ConstraintPlan
 
 W_POLICY, W_VALUE, W_AUX, W_ENTROPY = 1.0, 0.5, 0.1, 0.01
 GAMMA = 0.99
@@ -45,7 +49,7 @@ class TrainConfig:
     use_global: bool = True
     aux: bool = True
     net: dict = field(default_factory=lambda: NetConfig().as_dict())
-    dataset: str = "seen"
+    dataset: str = "seen"  # a stored set's training split, or "varied" (models.datasets.varied)
     checkpoint_every: int = 20
     teacher: int = 0  # candidates per step judged by a greedy completion (0: advantages from the return)
     imitate: float = 0.0  # weight of the cross-entropy towards the teacher's best judged candidate
@@ -189,9 +193,18 @@ def save_checkpoint(path: Path, net, opt, cfg: TrainConfig, episode: int, rng: n
     tmp.replace(path)
 
 
+def training_plans(cfg: TrainConfig) -> Callable[[int], ConstraintPlan]:
+    """episode -> its plan: the stored training split in a seeded order, or a freshly planned varied room."""
+    if cfg.dataset == VARIED:
+        return partial(varied_plan, cfg.seed)
+    from models.datasets import load_dataset
+    plans = [r.plan for r in load_dataset(cfg.dataset, "train")]
+    order = np.random.default_rng(cfg.seed).permutation(len(plans))
+    return lambda episode: plans[order[episode % len(plans)]]
+
+
 def train(cfg: TrainConfig, out_dir: Path, progress: bool = True) -> Path:
     """Train (or resume) in `out_dir`; returns the checkpoint path."""
-    from models.datasets import load_dataset
     out_dir.mkdir(parents=True, exist_ok=True)
     ckpt, log = out_dir / "checkpoint.pt", out_dir / "train.csv"
     torch.manual_seed(cfg.seed)
@@ -213,8 +226,7 @@ def train(cfg: TrainConfig, out_dir: Path, progress: bool = True) -> Path:
     elif cfg.init:
         start_from(net, Path(cfg.init))
     (out_dir / "config.json").write_text(json.dumps(asdict(cfg), indent=1))
-    plans = [r.plan for r in load_dataset(cfg.dataset, "train")]
-    order = np.random.default_rng(cfg.seed).permutation(len(plans))
+    plan_of = training_plans(cfg)
     new = not log.exists()
     bar = None
     if progress:
@@ -227,7 +239,7 @@ def train(cfg: TrainConfig, out_dir: Path, progress: bool = True) -> Path:
         batch: list[tuple] = []
         for episode in range(start, cfg.episodes):
             t0 = time.perf_counter()
-            plan = plans[order[episode % len(plans)]]
+            plan = plan_of(episode)
             ep, trace = rollout(net, plan, rng, use_global=cfg.use_global, teacher=cfg.teacher)
             batch.append((ep, trace, plan, t0))
             if len(batch) == cfg.batch or episode == cfg.episodes - 1:
