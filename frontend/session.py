@@ -740,13 +740,14 @@ class StudioSession:
 
     def add_object(self) -> None:
         gen = self.state.gen
-        name = self.new_object.value.strip()
-        cat = catalogue()
-        found = cat.lexicon.get(name.lower(), (name,) if name in cat else None)
-        if gen is None or not found:
-            self.say(f"**Error:** Unknown object type {name!r}: use an AI2-THOR type or a common name (fridge, sofa...).")
+        if gen is None:
             return
-        self._graph_edit(gen.task_graph.objects + [TaskObject(type=found[0], roles=["inference"])], f"+{found[0]}")
+        try:
+            found = catalogue().object_type(self.new_object.value)
+        except ValueError as e:
+            self.say(f"**Error:** {str(e)[0].upper()}{str(e)[1:]}.")
+            return
+        self._graph_edit(gen.task_graph.objects + [TaskObject(type=found, roles=["inference"])], f"+{found}")
 
     def remove_object(self) -> None:
         gen = self.state.gen

@@ -57,3 +57,22 @@ def test_nine_room_types_and_a_clear_error_otherwise():
     assert len(ROOM_TYPES) == 9 and all(normalise_room_type(r) == r for r in ROOM_TYPES)
     with pytest.raises(UnknownRoomType, match="unknown room type 'spaceship'"):
         normalise_room_type("spaceship")
+
+
+def test_a_designers_object_name_is_a_placeable_type_or_a_clear_error():
+    cat = catalogue()
+    assert cat.object_type(" fridge ") == "Fridge" and cat.object_type("Sofa") == "Sofa"
+    with pytest.raises(ValueError, match="unknown object type 'flux capacitor'"):
+        cat.object_type("flux capacitor")
+    with pytest.raises(ValueError, match="Floor is part of the room's structure"):
+        cat.object_type("floor")
+
+
+def test_the_room_planner_names_a_structure_type_in_a_hand_edited_graph():
+    from models.language.rule_parser import RuleParser
+    from models.planning import RoomPlanner
+    graph = RuleParser().parse("Put the apple in the fridge", "kitchen")
+    edited = graph.model_copy(update={"objects": [*graph.objects, graph.objects[0].model_copy(update={"type": "Floor"})]})
+    with pytest.raises(ValueError, match=r"structure as an object \(Floor\)"):
+        RoomPlanner().plan(edited)
+    assert RoomPlanner().plan(graph).objects  # the graph as parsed still plans

@@ -56,6 +56,10 @@ class RoomPlanner:
         self.groups = load_json("asset_groups.json")
 
     def plan(self, graph: TaskGraph, seed: int = 0, plan_id: str | None = None) -> RoomPlan:
+        structure = sorted({o.type for o in graph.objects if not self.cat.placeable(o.type)})
+        if structure:
+            raise ValueError(f"the task graph names part of the room's structure as an object "
+                             f"({', '.join(structure)}): it has no AI2-THOR asset and cannot be placed; remove it")
         rng = random.Random(seed)
         room_type = graph.room_type
         counter: Counter[str] = Counter()

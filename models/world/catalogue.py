@@ -113,6 +113,17 @@ class Catalogue:
         a mirror, curtains), which no planner can place."""
         return bool(self.host(name).assets)
 
+    def object_type(self, name: str) -> str:
+        """The placeable AI2-THOR type a designer means by `name` (a type or a common name); ValueError naming
+        the problem otherwise: an unknown word, or a part of the room's structure."""
+        found = self.lexicon.get(name.strip().lower(), (name.strip(),) if name.strip() in self else ())
+        if not found:
+            raise ValueError(f"unknown object type {name!r}: use an AI2-THOR type or a common name (fridge, sofa...)")
+        if not self.placeable(found[0]):
+            raise ValueError(f"{found[0]} is part of the room's structure (no AI2-THOR asset): it cannot be "
+                             "added or placed as an object")
+        return found[0]
+
     def pick_asset(self, name: str, rng: random.Random, fits: tuple[float, float] | None = None) -> Asset:
         """A real asset of the type (or its host); with `fits`, the one whose footprint is closest to it."""
         assets = self.host(name).assets
