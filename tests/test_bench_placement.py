@@ -22,3 +22,12 @@ def test_na_values_are_left_out_and_counted():
     assert "| 100.00 +- 0.00 |" in text and "1 / 2 of 2" in text
     assert complete_everywhere(rows, ["a", "b"]) == set()
     assert complete_everywhere(rows, ["a"]) == {("p", 0), ("q", 0)}
+
+
+def test_plan2place_bench_chooses_checkpoints_on_varied_validation_plans(tmp_path, capsys):
+    from app.bench.plan2place import main as plan2place_main
+    from models.placement.plan2place.policy import SHIPPED
+    args = SimpleNamespace(dataset="varied", n=2, seeds=1, runs=f"models/{SHIPPED}", out=str(tmp_path))
+    assert plan2place_main(args) == 0
+    text = (tmp_path / "plan2place.md").read_text()
+    assert "2 `varied` plans" in text and "| greedy |" in text and "| plan2place (" in text

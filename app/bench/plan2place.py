@@ -3,6 +3,10 @@ greedy placer, on the same plans in one run; also the ablation runs (each its ow
 
     h3ds bench plan2place --dataset seen --n 40 --seeds 1 --runs models/weights/plan2place/plan2place.npz
     h3ds bench plan2place --runs runs/main,runs/noglobal,runs/nosff,runs/noaux,runs/concat,runs/h64
+    h3ds bench plan2place --dataset varied --n 40 --seeds 1 --runs runs/varied/ckpt-01000.pt,...
+
+`--dataset varied`: plans of the seen validation instructions in varied rooms (models.datasets.varied), which
+no other benchmark uses: where checkpoints of a run are chosen.
 
 A run is exported weights (.npz), a checkpoint file or a training folder (its checkpoint.pt). Figures:
 the exact energy of the final layout (the RL objective; lower is better), the placement metrics x 100, PTO p50 per object.
@@ -17,6 +21,7 @@ from pathlib import Path
 import numpy as np
 
 from app.bench.placement import pick_records, score
+from models.datasets.varied import NAME as VARIED, varied_plan
 from models.placement import get_solver
 
 METRICS = [("energy", "energy", 1), ("cnt", "CNT", 100), ("sr", "SR", 100), ("key_nav", "Key_NAV", 100),
@@ -60,7 +65,10 @@ def table(rows: dict[str, list[dict]]) -> str:
 
 
 def main(args) -> int:
-    plans = [r.plan for r in pick_records(args.dataset, args.n)]
+    if args.dataset == VARIED:
+        plans = [varied_plan(0, e, "validation") for e in range(args.n)]
+    else:
+        plans = [r.plan for r in pick_records(args.dataset, args.n)]
     runs = [r for r in (args.runs or "models/weights/plan2place/plan2place.npz").split(",") if r]
     solvers = [get_solver("greedy"), get_solver("plan2place_untrained")] + [solver_for(r) for r in runs]
     rows = evaluate(solvers, plans, args.seeds)
