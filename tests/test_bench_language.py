@@ -52,3 +52,36 @@ def test_room_type_by_embedding_similarity(monkeypatch):
     knn = room_type.EmbeddingRoomType(memory)
     assert knn.predict(["Put a chilled apple on the countertop", "Put the bar of soap in the bathtub"]) == \
         ["kitchen", "bathroom"]
+
+
+def test_confirmation_sets_are_apart_from_training_the_policy_rows_the_review_and_the_room_memory():
+    from app.bench.language import (CONFIRM_SEED, CONFIRMATION, POLICY_ROWS, _adapter_split, confirmation_rows,
+                                    confirmation_sets)
+    from models.datasets.language_sets import SEED, text_key
+    from models.language.room_type import memory_rows
+    rows = confirmation_rows(40)
+    assert len(rows) == 40 and rows == confirmation_rows(40)  # deterministic
+    train, seen, _ = _adapter_split()
+    texts = {text_key(r.instruction) for r in rows}
+    assert len(texts) == 40
+    assert not texts & {text_key(train[i].instruction) for i in seen}
+    assert not texts & {text_key(r.instruction) for r in unseen_train_rows(POLICY_ROWS)}
+    assert not texts & {text_key(r.instruction) for r in memory_rows()}
+    assert not texts & {text_key(r.instruction) for r, _ in reviewed_rows()}
+    sets = confirmation_sets(40)
+    assert list(sets) == list(CONFIRMATION) and list(sets[CONFIRMATION[0]]) == rows and CONFIRM_SEED != SEED
+    sources = {r.source for r in rows}
+    for shifted in (sets[CONFIRMATION[1]], sets[CONFIRMATION[2]]):
+        assert shifted and {r.source for r in shifted} <= sources
+        assert not {text_key(r.instruction) for r in shifted} & texts  # every row rewritten
+
+
+def test_decision_rules_need_every_confirmation_set():
+    from app.bench.language import CONFIRMATION, decisions
+    even = {"object_f1": 0.9, "irecall": 0.8}
+    scored = {k: {"rules": even, "strict": dict(even)} for k in CONFIRMATION}
+    rooms = {k: {"rules": 0.8, "minilm": 0.9} for k in CONFIRMATION}
+    assert decisions(scored, rooms, "strict") == {"strict_default": True, "minilm_room_type": True}
+    scored[CONFIRMATION[2]]["strict"]["irecall"] = 0.79
+    rooms[CONFIRMATION[1]]["minilm"] = 0.8  # equal is not above
+    assert decisions(scored, rooms, "strict") == {"strict_default": False, "minilm_room_type": False}

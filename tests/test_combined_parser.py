@@ -112,3 +112,33 @@ def test_policies_differ_where_both_readings_name_a_type(tiny_adapter):
     assert cool.task_type == "pick_cool_then_place_in_recep"
     with pytest.raises(ValueError, match="unknown policy"):
         CombinedParser(lm=lm, policy="vote")
+
+
+def test_strict_policy_keeps_the_rules_refusals_and_lamp_alone_and_never_asks_the_model():
+    from models.language.combined import STRICT
+
+    class NoModel(LoraParser):
+        def read(self, text, room):
+            raise AssertionError("the strict policy must not ask the model here")
+    rules_first, strict = CombinedParser(policy="rules-first"), CombinedParser(lm=NoModel(), policy=STRICT)
+    refused = "Grab it from the fridge"  # the rules find nothing to pick up
+    with pytest.raises(InstructionError) as failure:
+        RuleParser().parse(refused, "kitchen")
+    fields = GraphFields("pick_and_place_simple", False, "Fridge", "CounterTop")
+    assert rules_first.merge(refused, "kitchen", None, failure.value, fields).uncertain  # the model's reading shown
+    with pytest.raises(InstructionError, match="no object to pick up"):
+        strict.merge(refused, "kitchen", None, failure.value, fields)
+    with pytest.raises(InstructionError, match="no object to pick up"):
+        strict.parse(refused, "kitchen")
+    lamp = "Turn on the lamp"  # the rules read a lamp alone, no relation
+    ruled = RuleParser().parse(lamp, "bedroom")
+    assert ruled.relations == []
+    look = GraphFields("look_at_obj_in_light", False, "Book", "DeskLamp")
+    assert rules_first.merge(lamp, "bedroom", ruled, None, look).relations  # rules-first takes the model's reading
+    assert strict.merge(lamp, "bedroom", ruled, None, look) == ruled == strict.parse(lamp, "bedroom")
+    # elsewhere the strict policy is rules-first
+    text = "Put the mug from the table in the sink"
+    ruled = RuleParser().parse(text, "kitchen")
+    heat = GraphFields("pick_heat_then_place_in_recep", False, "Mug", "SinkBasin")
+    assert strict.merge(text, "kitchen", ruled, None, heat, 0.95) == rules_first.merge(text, "kitchen", ruled, None,
+                                                                                         heat, 0.95)

@@ -17,6 +17,7 @@ import math
 import random
 import re
 import time
+from functools import cache
 from pathlib import Path
 
 from models.language import InstructionError, RuleParser
@@ -25,12 +26,17 @@ RESULTS = Path(__file__).parent / "results"
 CACHE = RESULTS / "language-lora-readings.jsonl"
 SETS = ("id_eval", "id_eval_dedup", "valid_unseen", "valid_unseen_dedup", "ts", "ts_dedup", "os", "os_dedup")
 POLICY_ROWS = 1000  # id_train rows unseen by the adapter, on which the combination policy is chosen
+# Confirmation sets: id_train rows set aside after the policy choice, never looked at before the decision
+# rule was written (README); TS / OS rewritten with a seed other than the evaluation sets' (10).
+CONFIRM_ROWS = 600
+CONFIRM_SEED = 11
+CONFIRMATION = ("confirm id", "confirm ts", "confirm os")
 REVIEW = Path(__file__).parents[2] / "models/data/language/label_review.md"
 
 
-def unseen_train_rows(n: int | None = None, adapter: Path | None = None) -> list:
-    """`n` evenly spaced (None: all) id_train rows the shipped adapter never trained on (its run's
-    held-out rows and those after its last step in the seeded epoch-0 order)."""
+def _adapter_split(adapter: Path | None = None) -> tuple[tuple, list[int], list[int]]:
+    """id_train, the indices of the rows the shipped adapter trained on, and of those it never saw (its
+    run's held-out rows and those after its last step in the seeded epoch-0 order), sorted."""
     from models.datasets.language_sets import load_language_set
     from models.language.llm.parser import default_adapter
     from models.language.llm.train import META_FILE
@@ -42,8 +48,48 @@ def unseen_train_rows(n: int | None = None, adapter: Path | None = None) -> list
     val, rest = order[:cfg["val_size"]], order[cfg["val_size"]:]
     perm = list(range(len(rest)))
     random.Random(cfg["seed"] * 1000).shuffle(perm)
+    seen = sorted(rest[i] for i in perm[:steps * cfg["batch_size"]])
     unseen = sorted(val + [rest[i] for i in perm[steps * cfg["batch_size"]:]])
+    return train, seen, unseen
+
+
+def unseen_train_rows(n: int | None = None, adapter: Path | None = None) -> list:
+    """`n` evenly spaced (None: all) id_train rows the shipped adapter never trained on (its run's
+    held-out rows and those after its last step in the seeded epoch-0 order)."""
+    train, _, unseen = _adapter_split(adapter)
     return [train[i] for i in (unseen[::max(1, len(unseen) // n)][:n] if n else unseen)]
+
+
+def confirmation_rows(n: int = CONFIRM_ROWS, adapter: Path | None = None) -> list:
+    """`n` evenly spaced id_train rows kept apart to confirm a choice made on the other sets: rows the
+    shipped adapter never trained on and not among the POLICY_ROWS, one per text, whose text (case and
+    spacing folded) is not that of a trained row, a policy row, a reviewed row (label_review.md) or a
+    row of the room-type classifier's memory (its nearest neighbour would be the sentence itself)."""
+    from models.datasets.language_sets import text_key
+    from models.language.room_type import memory_rows
+    train, seen, unseen = _adapter_split(adapter)
+    policy = unseen_train_rows(POLICY_ROWS, adapter)
+    taken = {text_key(train[i].instruction) for i in seen}
+    taken |= {text_key(r.instruction) for rows in (policy, memory_rows()) for r in rows}
+    taken |= {text_key(r.instruction) for r, _ in reviewed_rows()}
+    left = []
+    for i in unseen:
+        key = text_key(train[i].instruction)
+        if key not in taken:
+            taken.add(key)
+            left.append(train[i])
+    return left[::max(1, len(left) // n)][:n]
+
+
+@cache
+def confirmation_sets(n: int = CONFIRM_ROWS) -> dict[str, tuple]:
+    """The confirmation sets: `confirmation_rows` as they are (in distribution), rephrased by the TS
+    procedure and with their targets swapped by the OS procedure (models/datasets/language_sets.py),
+    both with a seed of their own (CONFIRM_SEED)."""
+    from models.datasets.language_sets import object_shift, text_shift
+    rows = confirmation_rows(n)
+    return {CONFIRMATION[0]: tuple(rows), CONFIRMATION[1]: tuple(text_shift(rows, CONFIRM_SEED)),
+            CONFIRMATION[2]: tuple(object_shift(rows, CONFIRM_SEED))}
 
 
 def lora_readings(rows, lm, cache: Path = CACHE, progress: bool = True) -> dict[tuple[str, str], dict]:
@@ -127,8 +173,9 @@ def read_all(rows, readings: dict, rules: RuleParser, combined: dict) -> tuple[d
     return graphs, seconds
 
 
-def room_type_lines(sets: dict, rules: RuleParser) -> list[str]:
-    """The room type inferred by the rules (a refusal is wrong) and by MiniLM similarity, per set."""
+def room_type_accuracy(sets: dict, rules: RuleParser) -> dict[str, dict[str, float]]:
+    """Accuracy of the room type inferred by the rules (a refusal is wrong) and by MiniLM similarity,
+    per set: {set: {"n", "rules", "minilm"}}."""
     from models.language.room_type import EmbeddingRoomType
 
     def ruled(text: str) -> str | None:
@@ -137,13 +184,27 @@ def room_type_lines(sets: dict, rules: RuleParser) -> list[str]:
         except InstructionError:
             return None
     knn = EmbeddingRoomType()
-    lines = ["| set | n | rules (object frequency) | MiniLM nearest instructions |", "| --- | ---: | ---: | ---: |"]
+    out = {}
     for name, rows in sets.items():
         truth = [r.room_type for r in rows]
-        by_rules = sum(ruled(r.instruction) == t for r, t in zip(rows, truth)) / len(rows)
-        by_knn = sum(p == t for p, t in zip(knn.predict([r.instruction for r in rows]), truth)) / len(rows)
-        lines.append(f"| {name} | {len(rows)} | {100 * by_rules:.1f} | {100 * by_knn:.1f} |")
-    return lines
+        out[name] = {"n": len(rows), "rules": sum(ruled(r.instruction) == t for r, t in zip(rows, truth)) / len(rows),
+                     "minilm": sum(p == t for p, t in zip(knn.predict([r.instruction for r in rows]), truth)) / len(rows)}
+    return out
+
+
+def room_type_lines(accuracy: dict[str, dict[str, float]]) -> list[str]:
+    lines = ["| set | n | rules (object frequency) | MiniLM nearest instructions |", "| --- | ---: | ---: | ---: |"]
+    return lines + [f"| {k} | {a['n']} | {100 * a['rules']:.1f} | {100 * a['minilm']:.1f} |" for k, a in accuracy.items()]
+
+
+def decisions(scored: dict, rooms: dict, strict: str) -> dict[str, bool]:
+    """The decision rules written before the confirmation sets were read (README): the strict variant
+    becomes the default parser iff its object F1 and iRecall are each >= the rules' on every
+    confirmation set; the MiniLM room type replaces the frequency rule iff its accuracy is above the
+    rule's on every confirmation set."""
+    return {"strict_default": all(scored[k][strict][m] >= scored[k]["rules"][m]
+                                  for k in CONFIRMATION for m in ("object_f1", "irecall")),
+            "minilm_room_type": all(rooms[k]["minilm"] > rooms[k]["rules"] for k in CONFIRMATION)}
 
 
 def score_parsers(rows, graphs: dict, seconds: dict) -> dict[str, dict]:
@@ -178,13 +239,14 @@ def role_line(set_name: str, name: str, r: dict) -> str:
 
 def main(args) -> int:
     from models.datasets.language_sets import load_language_set
-    from models.language.combined import DEFAULT_POLICY, POLICIES, CombinedParser
+    from models.language.combined import DEFAULT_POLICY, POLICIES, STRICT, CombinedParser
     from models.language.llm.parser import LoraParser
     from models.language.room_type import K
 
     names = [s.strip() for s in args.sets.split(",")] if args.sets else list(SETS)
     sets = {"id_train unseen (policy choice)": unseen_train_rows(POLICY_ROWS)}
     sets.update({n: load_language_set(n) for n in names})
+    sets.update(confirmation_sets())
     if args.per_set:
         sets = {k: v[::max(1, len(v) // args.per_set)][:args.per_set] for k, v in sets.items()}
     review = reviewed_rows()
@@ -207,9 +269,10 @@ def main(args) -> int:
     lines = [f"language parsers ({what}; room type given). `combined` = policy {DEFAULT_POLICY}; the model's "
              "latency is as measured when its readings were cached", "", *GRAPH_HEAD]
     lines += [graph_line(k, n, r[n]) for k, r in scored.items() for n in shown]
+    rooms = room_type_accuracy({k: v for k, v in sets.items() if k in names or k in CONFIRMATION}, rules)
     lines += ["", "room type inferred when not given, accuracy in %: the rules' joint iTHOR frequency of the parsed "
               f"objects vs the majority of the {K} nearest id_train instructions by MiniLM embedding", "",
-              *room_type_lines({k: v for k, v in sets.items() if k in names}, rules)]
+              *room_type_lines(rooms)]
     lines += ["", "roles of the parsed graphs, in % (over the union of labelled and predicted objects)", "", *ROLE_HEAD]
     lines += [role_line(k, n, r[n]) for k, r in scored.items() for n in shown]
     lines += ["", "combination policies (object F1 / iRecall)", "",
@@ -222,6 +285,18 @@ def main(args) -> int:
               "| --- | --- | --- |"]
     lines += [f"| {n} | " + " | ".join(f"{100 * r[n]['object_f1']:.2f} / {100 * r[n]['irecall']:.2f} / {r[n]['ged']:.2f}"
                                        for r in scored_review.values()) + " |" for n in ["rules", "lora", *combined]]
+    strict = f"combined {STRICT}"
+    decided = decisions(scored, rooms, strict)
+    lines += ["", f"confirmation sets ({CONFIRM_ROWS} id_train rows kept apart, as they are / TS / OS rewritten with "
+              f"seed {CONFIRM_SEED}; object F1 / iRecall / GED)", "",
+              "| set | n | rules | lora | combined | " + strict + " |", "| --- | ---: | --- | --- | --- | --- |"]
+    lines += [f"| {k} | {scored[k]['rules']['n']} | " + " | ".join(
+        f"{100 * scored[k][n]['object_f1']:.2f} / {100 * scored[k][n]['irecall']:.2f} / {scored[k][n]['ged']:.2f}"
+        for n in ("rules", "lora", "combined", strict)) + " |" for k in CONFIRMATION]
+    lines += ["", f"decision rule, {strict} as the default parser (object F1 and iRecall >= the rules' on every "
+              f"confirmation set): {'met' if decided['strict_default'] else 'not met'}",
+              "decision rule, MiniLM room type in the default parser (accuracy above the frequency rule's on every "
+              f"confirmation set): {'met' if decided['minilm_room_type'] else 'not met'}"]
     if args.decoding:
         from models.language.alfred import load_annotations
         rows = load_annotations("valid_seen")  # = id_eval, as ALFRED annotations (the training targets' form)
@@ -229,7 +304,8 @@ def main(args) -> int:
     print("\n".join(lines))
     RESULTS.mkdir(exist_ok=True)
     (RESULTS / "language.md").write_text("\n".join(lines) + "\n")
-    (RESULTS / "language.json").write_text(json.dumps({"sets": scored, "review": scored_review}, indent=1) + "\n")
+    (RESULTS / "language.json").write_text(json.dumps({"sets": scored, "review": scored_review,
+                                                          "room_type": rooms, "decisions": decided}, indent=1) + "\n")
     print(f"written: {RESULTS / 'language.md'}, {RESULTS / 'language.json'}")
     return 0
 

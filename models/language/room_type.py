@@ -33,13 +33,18 @@ def embed(texts: list[str], batch: int = 128):
     return np.concatenate(out) if out else np.zeros((0, 384), dtype=np.float32)
 
 
+def memory_rows() -> list:
+    """The classifier's memory: MEMORY_ROWS id_train rows drawn with SEED."""
+    from models.datasets.language_sets import load_language_set
+    return random.Random(SEED).sample(load_language_set("id_train"), MEMORY_ROWS)
+
+
 class EmbeddingRoomType:
     """k-nearest-neighbour room type over embedded id_train instructions (rows: instruction, room_type)."""
 
     def __init__(self, rows=None):
         if rows is None:
-            from models.datasets.language_sets import load_language_set
-            rows = random.Random(SEED).sample(load_language_set("id_train"), MEMORY_ROWS)
+            rows = memory_rows()
         self.rooms = [r.room_type for r in rows]
         self.memory = embed([r.instruction for r in rows])
 
