@@ -449,7 +449,9 @@ class StudioSession:
         where = "no valid position (unplaced)" if obj is None else \
             f"x {obj.x:.2f} m, z {obj.z:.2f} m, facing {obj.rotation:.0f}°"
         room = self.apartment.where(step) if self.apartment.current is not None else ""
-        self.step_md.content = (f"**Step {self.state.shown} / {len(steps)}**: {room}placing `{step.object_id}` "
+        again = any(s.object_id == step.object_id for s in steps[:self.state.shown - 1])
+        doing = "moving (access repair)" if again else "placing"
+        self.step_md.content = (f"**Step {self.state.shown} / {len(steps)}**: {room}{doing} `{step.object_id}` "
                                 f"at {where}")
         if obj is None:
             return
@@ -467,7 +469,7 @@ class StudioSession:
         placed, rows = [], []
         by_id = {p.id: p for p in gen.layout.placements}
         for step in steps:
-            if step.object_id in by_id:
+            if step.object_id in by_id and by_id[step.object_id] not in placed:  # a repair step moves a placed one
                 placed.append(by_id[step.object_id])
             rows.append(layout_energy(gen.plan, placed).as_dict())
         if self.state.gen is not gen or not rows:

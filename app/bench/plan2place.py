@@ -23,19 +23,20 @@ import numpy as np
 from app.bench.placement import pick_records, score
 from models.datasets.varied import NAME as VARIED, varied_plan
 from models.placement import get_solver
+from models.placement.greedy import GreedySolver
 
 METRICS = [("energy", "energy", 1), ("cnt", "CNT", 100), ("sr", "SR", 100), ("key_nav", "Key_NAV", 100),
            ("nav", "NAV", 100), ("constraint_satisfaction", "constraints", 100), ("realism", "realism", 100),
            ("collisions", "collisions", 1)]
 
 
-def solver_for(run: str):
+def solver_for(run: str, repair: bool = True):
     from models.placement.plan2place.agent import fast_policy, load_run
     from models.placement.plan2place.solver import Plan2PlaceSolver
     path = Path(run)
     net, episodes = load_run(path)
-    label = path.name if path.is_dir() else path.stem
-    return Plan2PlaceSolver(fast_policy(net), name=f"{label} ({episodes} ep)", use_global=net.use_global)
+    label = f"{path.name if path.is_dir() else path.stem} ({episodes} ep){'' if repair else ', no access repair'}"
+    return Plan2PlaceSolver(fast_policy(net), name=label, use_global=net.use_global, repair=repair)
 
 
 def evaluate(solvers: list, plans: list, seeds: int) -> dict[str, list[dict]]:
@@ -71,6 +72,8 @@ def main(args) -> int:
         plans = [r.plan for r in pick_records(args.dataset, args.n)]
     runs = [r for r in (args.runs or "models/weights/plan2place/plan2place.npz").split(",") if r]
     solvers = [get_solver("greedy"), get_solver("plan2place_untrained")] + [solver_for(r) for r in runs]
+    # what the access repair (models.placement.access) adds, for greedy and the first run
+    solvers += [GreedySolver(repair=False), solver_for(runs[0], repair=False)]
     rows = evaluate(solvers, plans, args.seeds)
     text = (f"plan2place bench on {len(plans)} `{args.dataset}` plans x {args.seeds} seed(s); energy = exact "
             f"energy of the final layout (lower is better), metrics x 100\n\n{table(rows)}\n")

@@ -78,14 +78,43 @@ def in_box_mask(grid: Grid, box) -> np.ndarray:
     return (gx >= box[0]) & (gx <= box[2]) & (gz >= box[1]) & (gz <= box[3])
 
 
-def reachable_space(grid: Grid, blocked: np.ndarray, room: Room) -> np.ndarray:
-    """Free cells connected to a free cell of some doorway."""
-    labels, _ = ndimage.label(~blocked)
-    start = np.zeros_like(blocked)
+def door_cells(grid: Grid, room: Room) -> np.ndarray:
+    """The cells the robot may start from (inside a doorway)."""
+    start = np.zeros(grid.mesh()[0].shape, bool)
     for box in door_boxes(room):
         start |= in_box_mask(grid, box)
+    return start
+
+
+def reachable_space(grid: Grid, blocked: np.ndarray, room: Room) -> np.ndarray:
+    """Free cells connected to a free cell of some doorway."""
+    return reachable_from(blocked, door_cells(grid, room))
+
+
+def reachable_from(blocked: np.ndarray, start: np.ndarray) -> np.ndarray:
+    """Free cells connected (4-neighbour) to a free cell of `start`."""
+    labels, n = ndimage.label(~blocked)
     ids = np.unique(labels[start & ~blocked])
-    return np.isin(labels, ids[ids > 0])
+    keep = np.zeros(n + 1, bool)
+    keep[ids[ids > 0]] = True
+    return keep[labels]
+
+
+def blocked_with(mesh: tuple[np.ndarray, np.ndarray], blocked: np.ndarray, b: np.ndarray,
+                 radius: float = ROBOT_RADIUS) -> np.ndarray:
+    """`blocked | blocked_by_boxes(grid, [b])` for a grid whose walls `blocked` already holds, evaluated only
+    on the cells near the box b (farther cells are more than the robot's radius away); `mesh`: grid.mesh()."""
+    gx, gz = mesh
+    xs, zs = gx[:, 0], gz[0]
+    margin = radius + (xs[1] - xs[0] if len(xs) > 1 else 0.0)
+    i0, i1 = np.searchsorted(xs, b[0] - margin), np.searchsorted(xs, b[2] + margin, side="right")
+    j0, j1 = np.searchsorted(zs, b[1] - margin), np.searchsorted(zs, b[3] + margin, side="right")
+    wx, wz = gx[i0:i1, j0:j1], gz[i0:i1, j0:j1]
+    dx = np.maximum(0, np.maximum(b[0] - wx, wx - b[2]))
+    dz = np.maximum(0, np.maximum(b[1] - wz, wz - b[3]))
+    out = blocked.copy()
+    out[i0:i1, j0:j1] |= dx * dx + dz * dz <= radius * radius + 1e-12
+    return out
 
 
 def access_strip(f: Footprint, depth: float = ACCESS_DEPTH) -> Footprint:

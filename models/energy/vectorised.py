@@ -16,7 +16,6 @@ import math
 from collections.abc import Collection
 
 import numpy as np
-from scipy import ndimage
 
 from models.constraints.evaluate import Poses, box_gap, placement, relation, wall_clearance
 from models.energy import navigation as nav
@@ -104,9 +103,7 @@ class CandidateEnergy:
         self._constant_terms()
         self.grid = nav.Grid(w, d)
         self.mesh = self.grid.mesh()
-        self.start = np.zeros(self.mesh[0].shape, bool)  # the doorway cells reachable_space starts from
-        for b in nav.door_boxes(self.room):
-            self.start |= nav.in_box_mask(self.grid, b)
+        self.start = nav.door_cells(self.grid, self.room)  # the doorway cells reachable_space starts from
         self.blocked = nav.blocked_by_boxes(self.grid, self.bodies)
         self.reach = self._reachable(self.blocked)
         self.reach_count = _Integral(self.grid, self.reach)
@@ -170,27 +167,11 @@ class CandidateEnergy:
         return new
 
     def _blocked_with(self, b: np.ndarray) -> np.ndarray:
-        """`self.blocked | navigation.blocked_by_boxes(grid, [b])`, evaluated only on the cells near b (the
-        walls are in self.blocked already; farther cells are more than the robot's radius away)."""
-        gx, gz = self.mesh
-        xs, zs = gx[:, 0], gz[0]
-        margin = ROBOT_RADIUS + self.grid.cell
-        i0, i1 = np.searchsorted(xs, b[0] - margin), np.searchsorted(xs, b[2] + margin, side="right")
-        j0, j1 = np.searchsorted(zs, b[1] - margin), np.searchsorted(zs, b[3] + margin, side="right")
-        wx, wz = gx[i0:i1, j0:j1], gz[i0:i1, j0:j1]
-        dx = np.maximum(0, np.maximum(b[0] - wx, wx - b[2]))
-        dz = np.maximum(0, np.maximum(b[1] - wz, wz - b[3]))
-        out = self.blocked.copy()
-        out[i0:i1, j0:j1] |= dx * dx + dz * dz <= ROBOT_RADIUS * ROBOT_RADIUS + 1e-12
-        return out
+        return nav.blocked_with(self.mesh, self.blocked, b)
 
     def _reachable(self, blocked: np.ndarray) -> np.ndarray:
         """`navigation.reachable_space` with the doorway cells computed once per room."""
-        labels, n = ndimage.label(~blocked)
-        ids = np.unique(labels[self.start & ~blocked])
-        keep = np.zeros(n + 1, bool)
-        keep[ids[ids > 0]] = True
-        return keep[labels]
+        return nav.reachable_from(blocked, self.start)
 
     # ---- what the placed objects contribute whatever the candidate --------------------------------
 

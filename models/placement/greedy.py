@@ -1,7 +1,8 @@
 """The greedy placer: for each object in the solvers' order, the candidate pose of lowest immediate energy.
 
 It is the simplest thing that could replace Plan2Place (issue 8): the same candidates, hard filters and
-per-step energy (models.energy.vectorised with the episode's remaining objects pending), no look-ahead.
+per-step energy (models.energy.vectorised with the episode's remaining objects pending), no look-ahead, and
+the same access repair at the end.
 `Episode` is the step machinery both share.
 """
 
@@ -171,6 +172,12 @@ class Episode:
 class GreedySolver:
     name = "greedy"
 
+    def __init__(self, repair: bool = True):
+        """`repair`: finish with the access repair (models.placement.access), as Plan2Place does."""
+        self.repair = repair
+        if not repair:
+            self.name = "greedy, no access repair"
+
     def solve(self, plan: ConstraintPlan, seed: int = 0, time_budget_s: float | None = None,
               observer: StepObserver | None = None, fixed: Fixed | None = None) -> Layout:
         start = time.perf_counter()
@@ -188,4 +195,7 @@ class GreedySolver:
             ep.apply(opts, pick)
             if observer is not None:
                 observer(ep.step_record(opts, pick, probs))
+        if self.repair:
+            from models.placement.access import restore_access  # it builds on this module's Episode
+            restore_access(ep, observer)
         return ep.layout(self.name, seed, time.perf_counter() - start)

@@ -16,9 +16,11 @@ from models.values import ConstraintPlan, Layout
 class Plan2PlaceSolver:
     name = "plan2place"
 
-    def __init__(self, policy: Policy | None = None, name: str | None = None, use_global: bool = True):
-        """`policy`: another network's (e.g. `agent.fast_policy` of a checkpoint); the shipped one by default."""
-        self._policy, self._use_global = policy, use_global
+    def __init__(self, policy: Policy | None = None, name: str | None = None, use_global: bool = True,
+                 repair: bool = True):
+        """`policy`: another network's (e.g. `agent.fast_policy` of a checkpoint); the shipped one by default.
+        `repair`: finish with the access repair (models.placement.access)."""
+        self._policy, self._use_global, self.repair = policy, use_global, repair
         if name:
             self.name = name
 
@@ -28,5 +30,5 @@ class Plan2PlaceSolver:
         policy, use_global = self._policy, self._use_global
         if policy is None:
             policy, use_global = shipped_policy(), shipped_weights().use_global
-        ep = place(policy, plan, np.random.default_rng(seed), use_global, fixed, observer)
+        ep = place(policy, plan, np.random.default_rng(seed), use_global, fixed, observer, self.repair)
         return ep.layout(self.name, seed, time.perf_counter() - start)

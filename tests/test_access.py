@@ -1,0 +1,53 @@
+"""The access repair: after the last object, task objects the robot cannot reach are made reachable by
+moving a few objects (never a fixed one), each move a step; a layout with all of them reachable is untouched."""
+
+from models.datasets import load_dataset
+from models.metrics import scene_metrics
+from models.placement.access import Reach, restore_access
+from models.placement.greedy import Episode, GreedySolver
+
+
+def _plan(pid):
+    return next(r.plan for r in load_dataset("seen", "validation") if r.plan.id == pid)
+
+
+def _finished(plan, fixed=None):
+    ep = Episode(plan, fixed)
+    ep.finish_greedily()
+    return ep
+
+
+def test_unreachable_task_objects_are_made_reachable_and_each_move_is_a_step():
+    plan = _plan("seen-00346")  # greedy walls off the garbage can and a side table
+    ep = _finished(plan)
+    before = scene_metrics(plan, ep.layout("greedy", 0, 0.0))
+    assert Reach(ep).unreachable(ep.placed) and before.key_nav < 1
+    steps = []
+    moved = restore_access(ep, steps.append)
+    after = scene_metrics(plan, ep.layout("greedy", 0, 0.0))
+    assert moved and [s.object_id for s in steps] == moved
+    assert not Reach(ep).unreachable(ep.placed) and after.key_nav == 1.0  # the metric agrees
+    assert after.collisions == 0 and after.oob == 0 and after.cnt == 1.0
+    last = {s.object_id: (s.x, s.z, s.rotation) for s in steps}
+    assert all((p.x, p.z, p.rotation) == last[p.id] for p in ep.placed if p.id in last)
+    assert all(s.scores.max() == 1.0 and (s.scores == 1.0).sum() == 1 for s in steps)
+
+
+def test_a_reachable_layout_and_fixed_objects_are_left_as_they_are():
+    plan = _plan("seen-00346")
+    ep = _finished(plan)
+    restore_access(ep)
+    poses = [(p.id, p.x, p.z, p.rotation) for p in ep.placed]
+    assert restore_access(ep) == [] and [(p.id, p.x, p.z, p.rotation) for p in ep.placed] == poses
+    # with every object fixed where greedy put it, nothing may move, even though access is blocked
+    walled = _finished(plan)
+    fixed = {p.id: (p.x, p.z, p.rotation) for p in walled.placed}
+    again = _finished(plan, fixed)
+    assert Reach(again).unreachable(again.placed) and restore_access(again) == []
+
+
+def test_the_greedy_solver_finishes_with_the_repair_unless_told_not_to():
+    plan = _plan("seen-00395")  # greedy leaves both task objects out of reach
+    plain = scene_metrics(plan, GreedySolver(repair=False).solve(plan))
+    repaired = scene_metrics(plan, GreedySolver().solve(plan))
+    assert plain.key_nav == 0 and repaired.key_nav == 1
