@@ -450,7 +450,7 @@ class StudioSession:
             f"x {obj.x:.2f} m, z {obj.z:.2f} m, facing {obj.rotation:.0f}°"
         room = self.apartment.where(step) if self.apartment.current is not None else ""
         again = any(s.object_id == step.object_id for s in steps[:self.state.shown - 1])
-        doing = "moving (access repair)" if again else "placing"
+        doing = "repair: placing" if again else "placing"
         self.step_md.content = (f"**Step {self.state.shown} / {len(steps)}**: {room}{doing} `{step.object_id}` "
                                 f"at {where}")
         if obj is None:

@@ -21,7 +21,7 @@ def test_greedy_places_everything_legally_and_reports_each_step():
         m = scene_metrics(plan, layout, PlacementProblem.from_plan(plan))
         assert m.cnt == 1.0 and m.collisions == 0 and m.oob == 0.0
         order = [o.id for o in PlacementProblem.from_plan(plan).order]
-        ids = [s.object_id for s in steps]  # one step per object, then the access repair's moves if any
+        ids = [s.object_id for s in steps]  # one step per object, then the repairs' steps if any
         assert ids[:len(order)] == order and set(ids[len(order):]) <= set(order)
         for s in steps:
             finite = np.isfinite(s.scores)

@@ -143,7 +143,7 @@ KNOWN = Path(__file__).parent / "fixtures" / "plan2place_known_layouts.json"
 
 
 def _placing_only(name: str):
-    """The solver without the access repair, which came after the fixture (it has tests of its own)."""
+    """The solver without the repairs, which came after the fixture (they have tests of their own)."""
     from models.placement.greedy import GreedySolver
     from models.placement.plan2place.agent import fast_policy, untrained_network
     from models.placement.plan2place.solver import Plan2PlaceSolver

@@ -35,7 +35,7 @@ def solver_for(run: str, repair: bool = True):
     from models.placement.plan2place.solver import Plan2PlaceSolver
     path = Path(run)
     net, episodes = load_run(path)
-    label = f"{path.name if path.is_dir() else path.stem} ({episodes} ep){'' if repair else ', no access repair'}"
+    label = f"{path.name if path.is_dir() else path.stem} ({episodes} ep){'' if repair else ', no repair'}"
     return Plan2PlaceSolver(fast_policy(net), name=label, use_global=net.use_global, repair=repair)
 
 
@@ -72,7 +72,7 @@ def main(args) -> int:
         plans = [r.plan for r in pick_records(args.dataset, args.n)]
     runs = [r for r in (args.runs or "models/weights/plan2place/plan2place.npz").split(",") if r]
     solvers = [get_solver("greedy"), get_solver("plan2place_untrained")] + [solver_for(r) for r in runs]
-    # what the access repair (models.placement.access) adds, for greedy and the first run
+    # what the repairs (models.placement.repair) add, for greedy and the first run
     solvers += [GreedySolver(repair=False), solver_for(runs[0], repair=False)]
     rows = evaluate(solvers, plans, args.seeds)
     text = (f"plan2place bench on {len(plans)} `{args.dataset}` plans x {args.seeds} seed(s); energy = exact "

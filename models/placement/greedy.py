@@ -2,7 +2,7 @@
 
 It is the simplest thing that could replace Plan2Place (issue 8): the same candidates, hard filters and
 per-step energy (models.energy.vectorised with the episode's remaining objects pending), no look-ahead, and
-the same access repair at the end.
+the same repairs at the end (models.placement.repair).
 `Episode` is the step machinery both share.
 """
 
@@ -173,10 +173,10 @@ class GreedySolver:
     name = "greedy"
 
     def __init__(self, repair: bool = True):
-        """`repair`: finish with the access repair (models.placement.access), as Plan2Place does."""
+        """`repair`: finish with the repairs (models.placement.repair), as Plan2Place does."""
         self.repair = repair
         if not repair:
-            self.name = "greedy, no access repair"
+            self.name = "greedy, no repair"
 
     def solve(self, plan: ConstraintPlan, seed: int = 0, time_budget_s: float | None = None,
               observer: StepObserver | None = None, fixed: Fixed | None = None) -> Layout:
@@ -196,6 +196,6 @@ class GreedySolver:
             if observer is not None:
                 observer(ep.step_record(opts, pick, probs))
         if self.repair:
-            from models.placement.access import restore_access  # it builds on this module's Episode
-            restore_access(ep, observer)
+            from models.placement.repair import repair  # it builds on this module's Episode
+            repair(ep, observer)
         return ep.layout(self.name, seed, time.perf_counter() - start)

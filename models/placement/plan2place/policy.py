@@ -17,7 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
-from models.placement.access import restore_access
+from models.placement.repair import repair as repair_layout
 from models.placement.base import Fixed, StepObserver
 from models.placement.greedy import Episode
 from models.placement.plan2place.features import ENERGY_GAP, Observation, choose_subset, observe
@@ -144,7 +144,7 @@ def shipped_policy() -> NumpyPolicy:
 def place(policy: Policy, plan: ConstraintPlan, rng: np.random.Generator, use_global: bool = True,
           fixed: Fixed | None = None, observer: StepObserver | None = None, repair: bool = True) -> Episode:
     """One deterministic episode: each object at the most probable of its candidates (fixed poses kept),
-    then, with `repair`, the access repair (models.placement.access)."""
+    then, with `repair`, the repairs (models.placement.repair)."""
     ep = Episode(plan, fixed)
     while not ep.done:
         opts = ep.options()
@@ -162,5 +162,5 @@ def place(policy: Policy, plan: ConstraintPlan, rng: np.random.Generator, use_gl
         if observer is not None:
             observer(ep.step_record(opts, pick, probs))
     if repair:
-        restore_access(ep, observer)
+        repair_layout(ep, observer)
     return ep

@@ -19,7 +19,7 @@ class Plan2PlaceSolver:
     def __init__(self, policy: Policy | None = None, name: str | None = None, use_global: bool = True,
                  repair: bool = True):
         """`policy`: another network's (e.g. `agent.fast_policy` of a checkpoint); the shipped one by default.
-        `repair`: finish with the access repair (models.placement.access)."""
+        `repair`: finish with the repairs (models.placement.repair)."""
         self._policy, self._use_global, self.repair = policy, use_global, repair
         if name:
             self.name = name
