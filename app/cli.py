@@ -314,7 +314,8 @@ def build_parser() -> argparse.ArgumentParser:
                    '"room_type"?} per line')
     p.add_argument("--out", metavar="OUT.jsonl", help="with --batch: write here instead of stdout")
     p.add_argument("--parser", choices=["combined", "rules", "lora", "openai"], default=None,
-                   help="instruction parser (default: rules; combined = rules + the LoRA language model)")
+                   help="instruction parser (default: combined = rules + the LoRA language model, the rules "
+                   "alone if it cannot load; or H3DS_PARSER)")
     p.add_argument("--openai-url", default=None, help="--parser openai: the server's base URL, e.g. "
                    "http://127.0.0.1:8000/v1 (or H3DS_OPENAI_BASE_URL)")
     p.add_argument("--openai-model", default=None, help="--parser openai: the served model's name")
@@ -337,7 +338,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--solver", default=None, help=SOLVER_HELP)
     p.add_argument("--out", required=True, metavar="DIR")
     p.add_argument("--parser", choices=["combined", "rules", "lora", "openai"], default=None,
-                   help="instruction parser (default: rules; combined = rules + the LoRA language model)")
+                   help="instruction parser (default: combined = rules + the LoRA language model, the rules "
+                   "alone if it cannot load; or H3DS_PARSER)")
     p.add_argument("--openai-url", default=None, help="--parser openai: the server's base URL, e.g. "
                    "http://127.0.0.1:8000/v1 (or H3DS_OPENAI_BASE_URL)")
     p.add_argument("--openai-model", default=None, help="--parser openai: the served model's name")

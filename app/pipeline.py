@@ -12,7 +12,8 @@ import json
 from dataclasses import dataclass
 from pathlib import Path
 
-from models.language import InstructionParser, RuleParser
+from models.language import InstructionParser
+from models.language.combined import make_parser
 from models.placement import PlacementProblem, StepObserver, get_solver
 from models.placement.base import Fixed
 from models.planning import ConstraintWriter, RoomPlanner
@@ -38,7 +39,7 @@ class Generation:
 class Pipeline:
     def __init__(self, parser: InstructionParser | None = None, planner: RoomPlanner | None = None,
                  writer: ConstraintWriter | None = None, solver: str | None = None):
-        self.parser = parser or RuleParser()
+        self.parser = parser or make_parser()  # the default parser (models/language/combined.py)
         self.planner = planner or RoomPlanner()
         self.writer = writer or ConstraintWriter()
         self.solver = solver

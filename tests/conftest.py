@@ -3,6 +3,9 @@ import os
 import pytest
 
 os.environ.setdefault("HF_HUB_OFFLINE", "1")  # tests never reach a model hub
+# The default parser (combined) loads a 1 GB language model at the first instruction (~9 s): tests
+# that are not about parsing use the rules; the default itself is tested with H3DS_PARSER removed.
+os.environ.setdefault("H3DS_PARSER", "rules")
 
 
 @pytest.fixture(scope="session")

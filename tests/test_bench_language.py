@@ -85,3 +85,33 @@ def test_decision_rules_need_every_confirmation_set():
     scored[CONFIRMATION[2]]["strict"]["irecall"] = 0.79
     rooms[CONFIRMATION[1]]["minilm"] = 0.8  # equal is not above
     assert decisions(scored, rooms, "strict") == {"strict_default": False, "minilm_room_type": False}
+
+
+def test_shipped_room_type_memory_is_the_seeded_rows_embedded():
+    import numpy as np
+
+    from models.language.room_type import EmbeddingRoomType, embed, memory_rows, shipped_memory
+    rows = memory_rows()
+    with np.load(shipped_memory()) as saved:
+        assert list(saved["sources"]) == [r.source for r in rows]
+        assert list(saved["rooms"]) == [r.room_type for r in rows]
+        stored = saved["embeddings"][:3].astype(np.float32)
+    assert np.abs(stored - embed([r.instruction for r in rows[:3]])).max() < 2e-3  # float16
+    knn = EmbeddingRoomType()
+    assert knn.memory is None and knn.predict(["Put a chilled apple on the counter"]) == ["kitchen"]
+    assert knn.memory.shape == (len(rows), 384)
+
+
+def test_latency_counts_the_model_only_where_it_is_asked():
+    from types import SimpleNamespace
+
+    from models.language.combined import STRICT
+    rows = [SimpleNamespace(instruction=t, room_type="bedroom") for t in ("Turn on the lamp", "Put the book on the bed")]
+    readings = {(r.instruction, r.room_type): {"fields": ["look_at_obj_in_light", False, "Book", "DeskLamp"],
+                                              "logprob": [0.0] * 4, "seconds": 0.5} for r in rows}
+    rules = RuleParser()
+    parsers = {"strict": CombinedParser(rules=rules, policy=STRICT), "first": CombinedParser(rules=rules, policy="rules-first")}
+    _, seconds = read_all(rows, readings, rules, parsers)
+    lamp, book = [(r.instruction, r.room_type) for r in rows]
+    assert seconds["strict"][lamp] < 0.1 and seconds["first"][lamp] >= 0.5  # a lamp alone: the rules stand
+    assert seconds["strict"][book] >= 0.5

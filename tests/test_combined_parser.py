@@ -59,7 +59,9 @@ def test_instruction_naming_no_object_is_an_error_not_an_invented_type(combined)
         combined.parse("Hello there, how are you today?")
 
 
-def test_rules_read_misses_are_flagged_uncertain_when_the_model_names_a_named_type(combined):
+def test_rules_read_misses_are_flagged_uncertain_when_the_model_names_a_named_type(tiny_adapter):
+    adapter, base = tiny_adapter  # rules-first (not the default policy): the model answers the rules' refusals
+    combined = CombinedParser(lm=LoraParser(adapter=adapter, base=str(base)), policy="rules-first")
     text = "Grab the apple"
     failure = InstructionError("no object to pick up was recognised")
     fields = GraphFields("pick_and_place_simple", False, "Apple", "CounterTop")
@@ -85,6 +87,7 @@ def test_without_a_language_model_the_rules_answer_and_say_so(tmp_path):
 def test_parsers_by_name():
     assert make_parser("rules").name == "rules"
     assert make_parser("combined").name == "combined"
+    assert make_parser("combined").policy == "rules-first-strict"
     assert make_parser("openai", base_url="http://127.0.0.1:9/v1").name == "openai"
     with pytest.raises(ValueError, match="unknown parser"):
         make_parser("gpt")
@@ -142,3 +145,52 @@ def test_strict_policy_keeps_the_rules_refusals_and_lamp_alone_and_never_asks_th
     heat = GraphFields("pick_heat_then_place_in_recep", False, "Mug", "SinkBasin")
     assert strict.merge(text, "kitchen", ruled, None, heat, 0.95) == rules_first.merge(text, "kitchen", ruled, None,
                                                                                          heat, 0.95)
+
+
+def test_default_parser_is_combined_strict_and_loads_nothing_until_the_first_instruction(monkeypatch):
+    import os
+    import subprocess
+    import sys
+
+    from app.pipeline import Pipeline
+    from models.language.combined import DEFAULT_PARSER, STRICT
+    from models.language.room_type import EmbeddingRoomType
+    monkeypatch.delenv("H3DS_PARSER", raising=False)
+    parser = Pipeline().parser
+    assert DEFAULT_PARSER == "combined" and isinstance(parser, CombinedParser) and parser.policy == STRICT
+    assert isinstance(parser.room_types, EmbeddingRoomType) and parser.room_types.memory is None
+    assert not parser.lm.loaded
+    monkeypatch.setenv("H3DS_PARSER", "rules")
+    assert isinstance(Pipeline().parser, RuleParser)
+    # start-up stays light: building the default pipeline imports no torch
+    code = "import sys; from app.pipeline import Pipeline; Pipeline(); print('torch' in sys.modules)"
+    env = {k: v for k, v in os.environ.items() if k != "H3DS_PARSER"}
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, timeout=120)
+    assert out.stdout.strip() == "False", out.stderr[-2000:]
+
+
+def test_room_type_of_an_instruction_given_without_one_comes_from_the_classifier():
+    from models.language.combined import STRICT
+
+    class Rooms:
+        def __init__(self, error=None):
+            self.error, self.asked = error, []
+
+        def predict(self, texts):
+            if self.error:
+                raise self.error
+            self.asked += texts
+            return ["bathroom"] * len(texts)
+
+    class NoModel(LoraParser):
+        def read(self, text, room):
+            raise OSError("no model here")
+    rooms = Rooms()
+    parser = CombinedParser(lm=NoModel(), policy=STRICT, room_types=rooms)
+    text = "Put a chilled bread on the counter"
+    assert RuleParser().parse(text).room_type == "kitchen"  # the frequency rule
+    assert parser.parse(text).room_type == "bathroom" and rooms.asked == [text]
+    assert parser.parse(text, "kitchen").room_type == "kitchen" and rooms.asked == [text]  # given: not asked
+    broken = CombinedParser(lm=NoModel(), policy=STRICT, room_types=Rooms(ImportError("no torch")))
+    graph = broken.parse(text)
+    assert graph.room_type == "kitchen" and any("room-type classifier is not available" in m for m in graph.messages)

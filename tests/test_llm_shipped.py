@@ -32,3 +32,15 @@ def test_shipped_adapter_is_small_and_parses_offline():
     graph = json.loads(out.stdout)
     assert graph["provenance"]["method"] == "lora"
     assert ["Apple", "placed_at", "Fridge"] in graph["relations"]
+
+
+def test_default_parser_is_the_combined_one_with_the_shipped_models():
+    env = {k: v for k, v in os.environ.items() if k != "H3DS_PARSER"}  # conftest pins rules for other tests
+    env["HF_HUB_OFFLINE"] = "1"
+    cli = Path(sys.executable).with_name("h3ds")
+    out = subprocess.run([str(cli), "parse", "Put the washed apple in the fridge"], capture_output=True, text=True,
+                         env=env, timeout=300)
+    assert out.returncode == 0, out.stderr[-2000:]
+    graph = json.loads(out.stdout)
+    assert graph["provenance"]["method"] == "combined"
+    assert ["Apple", "placed_at", "Fridge"] in graph["relations"] and graph["room_type"] == "kitchen"

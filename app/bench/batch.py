@@ -58,7 +58,7 @@ def run_once(source: Path, out: Path, executor: str, workers: int) -> tuple[Run,
     ex = LocalProcesses(workers) if executor == "local" else RayExecutor(workers)
     t1 = time.perf_counter()
     with ex:
-        summary = run_batch(source, out, ex, progress=False)
+        summary = run_batch(source, out, ex, parser="rules", progress=False)
     t2 = time.perf_counter()
     rows = [json.loads(line) for line in (out / RESULTS).read_text().splitlines()]
     run = Run(ex.name, workers, t1 - t0, t2 - t1, summary.done, summary.failed, summary.errors)

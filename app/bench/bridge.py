@@ -70,13 +70,14 @@ def main(args) -> int:
     from app.bridge import bridge_for
     from app.bridge.protocol import MAX_FRAME_BYTES
     from app.pipeline import Pipeline
+    from models.language import RuleParser
     from frontend.server import free_port
     from studio_db import Store
 
     n = max(args.n, 1000) if args.n != 30 else 20_000
     tmp = tempfile.mkdtemp(prefix="h3ds-bench-bridge-")
     store = Store(f"sqlite:///{tmp}/studio.db")
-    pipeline = Pipeline()
+    pipeline = Pipeline(parser=RuleParser())  # the rules, as the figures in the README
     scene = pipeline.generate("Put a chilled bread on the counter", "kitchen", seed=0).scene
     scene_id, _ = store.create_scene("bench", scene, 0, "dfs")
     bridge = bridge_for(store)

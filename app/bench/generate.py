@@ -11,6 +11,7 @@ import statistics
 import time
 
 from app.pipeline import Pipeline
+from models.language import RuleParser
 from models.exports.glb import to_glb
 from models.exports.procthor_house import to_house
 from models.language.alfred import load_annotations
@@ -31,7 +32,7 @@ def main(args) -> int:
     if getattr(args, "room_type", None):
         from app.bench.generate_apartment import main as apartment
         return apartment(args)
-    pipeline = Pipeline(solver="dfs")
+    pipeline = Pipeline(parser=RuleParser(), solver="dfs")  # the rules, as the figures in the README
     items = pick_instructions(args.n)
     pipeline.generate(*items[0], seed=0)  # warm-up: catalogue load, imports
     totals, place_times, per_object, parse_times, skipped = [], [], [], [], 0

@@ -13,6 +13,7 @@ import time
 
 from app.bench.generate import pick_instructions, quantile
 from app.pipeline import Pipeline
+from models.language import RuleParser
 from models.exports.apartment import apartment_glb, apartment_house
 from models.exports.glb import to_glb
 from models.exports.procthor_house import to_house
@@ -27,7 +28,7 @@ def _ms(values: list[float]) -> str:
 
 
 def main(args) -> int:
-    pipeline = Pipeline(solver="dfs")
+    pipeline = Pipeline(parser=RuleParser(), solver="dfs")  # the rules, as the figures in the README
     rooms = parse_rooms(args.rooms)
     items = pick_instructions(args.n)
     pipeline.generate_apartment(items[0][0], rooms, seed=0)  # warm-up: catalogue load, imports

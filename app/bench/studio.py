@@ -26,6 +26,7 @@ import msgspec
 
 from app.bench.generate import pick_instructions, quantile
 from app.pipeline import Pipeline
+from models.language import RuleParser
 
 ARGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
         "--disable-background-networking", "--disable-component-update", "--disable-sync"]
@@ -104,7 +105,7 @@ def main(args) -> int:
 
     items = pick_instructions(args.n)
     base_rss = rss_mb()
-    pipeline = Pipeline()
+    pipeline = Pipeline(parser=RuleParser())  # the rules, as the figures in the README
     bare = []
     for i, (text, room) in enumerate(items):
         t0 = time.perf_counter()
