@@ -56,7 +56,7 @@ MALFORMED = {
 }
 
 
-@pytest.mark.parametrize("solver", SOLVERS)
+@pytest.mark.parametrize("solver", [*SOLVERS, "greedy", "plan2place"])
 @pytest.mark.parametrize("case", sorted(MALFORMED))
 def test_malformed_plans_never_crash(solver, case):
     objects, text = MALFORMED[case]
@@ -67,6 +67,18 @@ def test_malformed_plans_never_crash(solver, case):
         assert [u.id for u in layout.unplaced] == ["bed-0"] and "larger than the room" in layout.unplaced[0].reason
     if case == "unknown names and ids":
         assert len(layout.warnings) >= 4
+
+
+@pytest.mark.parametrize("solver", ["greedy", "plan2place"])
+def test_thirty_objects_in_a_small_room_are_placed_or_left_out_with_a_reason(solver):
+    """More furniture than fits: the step-wise placers and their repairs finish, legal, every object accounted for."""
+    types = [("Chair", 0.5, 0.5), ("SideTable", 0.6, 0.5), ("Shelf", 0.9, 0.4), ("Sofa", 2.0, 0.9), ("ArmChair", 0.9, 0.9)]
+    objects = [(f"{t.lower()}-{k}", t, w, d, "anchor" if k == 0 else "context")
+               for k in range(6) for t, w, d in types]
+    p = plan(objects, "\n".join(f"{o[0]} | edge" for o in objects))
+    layout = get_solver(solver).solve(p, seed=0)
+    check(p, layout)
+    assert len(p.objects) == 30 and layout.placements and layout.unplaced
 
 
 @pytest.mark.parametrize("solver", ["milp", "z3"])
