@@ -61,12 +61,9 @@ def _best_move(ep: Episode, reach: Reach, placed: list[PlacedObject], oid: str, 
     reaches more of them than now."""
     obj = ep.problem.plan.object(oid)
     others = [p for p in placed if p.id != oid]
-    cands, body = candidate_bodies(ep.scorer, obj)
-    ok, _ = hard_filter(ep.scorer, obj, others, cands, SweptBoxes(body), True)
-    feasible = np.flatnonzero(ok)
+    cands, feasible, terms = _scored(ep, obj, others, relax=False)
     if not len(feasible):
         return None
-    terms = CandidateEnergy(ep.problem, others, pending=()).score(obj, cands[feasible])
     base = reach.blocked(others)
     best = None
     for k in np.argsort(terms["total"], kind="stable")[:CHECKS]:
@@ -84,13 +81,23 @@ def repair(ep: Episode, observer: StepObserver | None = None) -> list[str]:
     return make_room(ep, observer) + restore_access(ep, observer)
 
 
-def _legal(ep: Episode, obj, placed: list[PlacedObject], cands: np.ndarray, swept: SweptBoxes) -> np.ndarray:
-    """Indices of the legal poses among `cands`, the front-clearance rules relaxed only if none is legal
-    with them (as `Episode.options` does)."""
+def _legal(ep: Episode, obj, placed: list[PlacedObject], cands: np.ndarray, swept: SweptBoxes,
+           relax: bool = True) -> np.ndarray:
+    """Indices of the legal poses among `cands`; with `relax`, the front-clearance rules relaxed if none
+    is legal with them (as `Episode.options` does)."""
     ok, _ = hard_filter(ep.scorer, obj, placed, cands, swept, True)
-    if not ok.any():
+    if relax and not ok.any():
         ok, _ = hard_filter(ep.scorer, obj, placed, cands, swept, False)
     return np.flatnonzero(ok)
+
+
+def _scored(ep: Episode, obj, placed: list[PlacedObject], pending=(), relax: bool = True):
+    """(every candidate pose of `obj`, the indices of the legal ones, their energy terms with `placed` where
+    they are and `pending` still to come); no terms when none is legal."""
+    cands, body = candidate_bodies(ep.scorer, obj)
+    legal = _legal(ep, obj, placed, cands, SweptBoxes(body), relax)
+    terms = CandidateEnergy(ep.problem, placed, pending=pending).score(obj, cands[legal]) if len(legal) else {}
+    return cands, legal, terms
 
 
 def _step(obj_id: str, pose: PlacedObject, cands: np.ndarray, legal: np.ndarray, k: int, terms: dict) -> PlacementStep:
@@ -139,11 +146,9 @@ def make_room(ep: Episode, observer: StepObserver | None = None) -> list[str]:
             steps = [None]  # the left-out object's, once the others are placed again
             for k, mover in enumerate(blockers):
                 m_obj = ep.problem.plan.object(mover)
-                m_cands, m_body = candidate_bodies(ep.scorer, m_obj)
-                legal = _legal(ep, m_obj, placed, m_cands, SweptBoxes(m_body))
+                m_cands, legal, terms = _scored(ep, m_obj, placed, pending=set(blockers[k + 1:]))
                 if not len(legal):
                     break
-                terms = CandidateEnergy(ep.problem, placed, pending=set(blockers[k + 1:])).score(m_obj, m_cands[legal])
                 best = int(np.argmin(terms["total"]))
                 placed.append(ep.scorer.place(m_obj, *(float(v) for v in m_cands[legal[best]])))
                 steps.append(_step(mover, placed[-1], m_cands, legal, best, terms))
