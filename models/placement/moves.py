@@ -1,0 +1,100 @@
+"""Moving objects of a finished episode (shared by the repairs and the polish): which task objects the
+robot reaches, the legal poses of an object among the others and their energy, the poses it could take if
+a few objects made way, and the placement step each move shows the observer."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from models.energy import navigation as nav
+from models.energy.vectorised import CandidateEnergy
+from models.energy.weights import ACCESS_DEPTH, WEIGHTS
+from models.geometry import SweptBoxes
+from models.placement.base import PlacementStep
+from models.placement.candidates import OVERLAP_TOL, PlacedObject, front_boxes
+from models.placement.greedy import Episode, candidate_bodies, hard_filter
+
+MAX_BLOCKERS, TRIES = 3, 5  # displacements
+
+
+class Reach:
+    """Which task objects the robot can reach, on the navigation grid of one room."""
+
+    def __init__(self, ep: Episode):
+        room = ep.problem.plan.room
+        self.grid = nav.Grid(room.width, room.depth)
+        self.mesh = self.grid.mesh()
+        self.start = nav.door_cells(self.grid, room)
+        self.task = {o.id for o in ep.problem.plan.objects if o.is_task}
+        self._strips: dict[tuple, np.ndarray] = {}
+
+    def strip(self, p: PlacedObject) -> np.ndarray:
+        key = (p.x, p.z, p.rotation, p.width, p.depth)
+        if key not in self._strips:
+            self._strips[key] = nav.in_box_mask(self.grid, front_boxes(p.x, p.z, p.rotation, p.width, p.depth,
+                                                                      ACCESS_DEPTH))
+        return self._strips[key]
+
+    def blocked(self, placed: list[PlacedObject]) -> np.ndarray:
+        return nav.blocked_by_boxes(self.grid, np.array([p.body for p in placed]).reshape(-1, 4))
+
+    def unreachable(self, placed: list[PlacedObject], blocked: np.ndarray | None = None) -> list[str]:
+        reach = nav.reachable_from(self.blocked(placed) if blocked is None else blocked, self.start)
+        return [p.id for p in placed if p.id in self.task and not (self.strip(p) & reach).any()]
+
+
+def legal_poses(ep: Episode, obj, placed: list[PlacedObject], cands: np.ndarray, swept: SweptBoxes,
+           relax: bool = True) -> np.ndarray:
+    """Indices of the legal poses among `cands`; with `relax`, the front-clearance rules relaxed if none
+    is legal with them (as `Episode.options` does)."""
+    ok, _ = hard_filter(ep.scorer, obj, placed, cands, swept, True)
+    if relax and not ok.any():
+        ok, _ = hard_filter(ep.scorer, obj, placed, cands, swept, False)
+    return np.flatnonzero(ok)
+
+
+def scored(ep: Episode, obj, placed: list[PlacedObject], pending=(), relax: bool = True,
+            energy: CandidateEnergy | None = None):
+    """(every candidate pose of `obj`, the indices of the legal ones, their energy terms with `placed` where
+    they are and `pending` still to come); no terms when none is legal. `energy`: that set-up, if made."""
+    cands, body = candidate_bodies(ep.scorer, obj)
+    legal = legal_poses(ep, obj, placed, cands, SweptBoxes(body), relax)
+    if not len(legal):
+        return cands, legal, {}
+    energy = energy or CandidateEnergy(ep.problem, placed, pending=pending)
+    return cands, legal, energy.score(obj, cands[legal])
+
+
+def move_step(obj_id: str, pose: PlacedObject, cands: np.ndarray, legal: np.ndarray, k: int, terms: dict) -> PlacementStep:
+    scores = np.full(len(cands), -np.inf)
+    scores[legal], scores[legal[k]] = 0.0, 1.0
+    return PlacementStep(obj_id, pose.x, pose.z, pose.rotation, cands, scores, {t: float(v[k]) for t, v in terms.items()})
+
+
+def displacements(ep: Episode, obj, cands: np.ndarray, swept: SweptBoxes, placed: list[PlacedObject],
+                  among: np.ndarray | None = None, rank: np.ndarray | None = None,
+                  energy: CandidateEnergy | None = None) -> list[tuple[int, list[str]]]:
+    """Poses `obj` could take (of `among`, a mask over `cands`; default all) if at most `MAX_BLOCKERS` of
+    `placed` (none fixed) were moved away: (pose index, the ids in the way, largest first), highest `rank`
+    first (default: all equal), then fewest in the way, then lowest energy (the overlap with them not
+    counted; `energy`: the set-up for `placed`, if made), at most `TRIES`."""
+    way: list[list[int]] = [[] for _ in cands]
+    for j, p in enumerate(placed):
+        for idx, area in swept.overlaps(p.body[None]):
+            for i in idx[area > OVERLAP_TOL]:
+                way[i].append(j)
+    fixed = {j for j, p in enumerate(placed) if p.id in ep.problem.fixed}
+    free = hard_filter(ep.scorer, obj, [], cands, swept, False)[0]  # inside, doorways clear
+    if among is not None:
+        free &= among
+    options = np.array([i for i in np.flatnonzero(free) if 0 < len(way[i]) <= MAX_BLOCKERS and not fixed & set(way[i])],
+                       int)
+    if not len(options):
+        return []
+    terms = (energy or CandidateEnergy(ep.problem, placed, pending=())).score(obj, cands[options])
+    cost = terms["total"] - WEIGHTS["collision"] * terms["collision"]
+    rank = np.zeros(len(cands)) if rank is None else rank
+    order = sorted(range(len(options)), key=lambda k: (-rank[options[k]], len(way[options[k]]), cost[k]))[:TRIES]
+    area = {p.id: p.width * p.depth for p in placed}
+    return [(int(options[k]), sorted((placed[j].id for j in way[options[k]]), key=lambda i: -area[i]))
+            for k in order]
