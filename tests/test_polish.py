@@ -9,7 +9,7 @@ from models.energy.exact import layout_energy
 from models.metrics import scene_metrics
 from models.placement.greedy import Episode, GreedySolver
 from models.placement.moves import Reach
-from models.placement.polish import broken, polish
+from models.placement.polish import broken, crowded, polish
 
 SEEN = {r.plan.id: r.plan for r in load_dataset("seen", "train")[:120]}
 
@@ -73,3 +73,17 @@ def test_the_greedy_solver_polishes_unless_told_not_to_repair():
     plain = scene_metrics(plan, GreedySolver(repair=False).solve(plan))
     finished = scene_metrics(plan, GreedySolver().solve(plan))
     assert finished.constraint_satisfaction > plain.constraint_satisfaction
+
+
+def test_in_a_crowded_room_only_objects_with_a_broken_constraint_move():
+    """No make-way move there (each would move objects whose constraints are all met)."""
+    dense = [r.plan for r in load_dataset("dense")[:12]]
+    assert all(crowded(p) for p in dense) and not any(crowded(p) for p in list(SEEN.values())[:40])
+    moves = 0
+    for plan in dense:
+        ep = _finished(plan)
+        was_broken = set(broken(ep))
+        moved = polish(ep)
+        assert set(moved) <= was_broken and len(moved) == len(set(moved))
+        moves += len(moved)
+    assert moves  # the claim is tested on real moves

@@ -117,6 +117,26 @@ def blocked_with(mesh: tuple[np.ndarray, np.ndarray], blocked: np.ndarray, b: np
     return out
 
 
+def blocked_without(grid: Grid, mesh: tuple[np.ndarray, np.ndarray], blocked: np.ndarray, b: np.ndarray,
+                    others: np.ndarray, radius: float = ROBOT_RADIUS) -> np.ndarray:
+    """`blocked_by_boxes(grid, others)` for a grid `blocked` that also holds box b: only the cells near b
+    (those b can block) are labelled again, by the walls and the `others` (M, 4) that reach them."""
+    gx, gz = mesh
+    xs, zs = gx[:, 0], gz[0]
+    margin = radius + (xs[1] - xs[0] if len(xs) > 1 else 0.0)
+    i0, i1 = np.searchsorted(xs, b[0] - margin), np.searchsorted(xs, b[2] + margin, side="right")
+    j0, j1 = np.searchsorted(zs, b[1] - margin), np.searchsorted(zs, b[3] + margin, side="right")
+    wx, wz = gx[i0:i1, j0:j1], gz[i0:i1, j0:j1]
+    window = (wx < radius) | (wz < radius) | (wx > grid.width - radius) | (wz > grid.depth - radius)
+    for o in np.asarray(others, float).reshape(-1, 4):
+        dx = np.maximum(0, np.maximum(o[0] - wx, wx - o[2]))
+        dz = np.maximum(0, np.maximum(o[1] - wz, wz - o[3]))
+        window |= dx * dx + dz * dz <= radius * radius + 1e-12
+    out = blocked.copy()
+    out[i0:i1, j0:j1] = window
+    return out
+
+
 def access_strip(f: Footprint, depth: float = ACCESS_DEPTH) -> Footprint:
     """The floor in front of an object where the robot stands to use it."""
     return f.front_zone(depth)

@@ -117,7 +117,6 @@ class CandidateEnergy:
         pending)` up to float summation order (tested)."""
         new = object.__new__(CandidateEnergy)
         new.__dict__.update(self.__dict__)
-        room, cons = self.room, self.problem.constraints
         new.placed, new.pending = self.placed + [p], set(pending)
         pose = Poses.one(p.x, p.z, p.rotation, p.width, p.depth)
         new.poses = {**self.poses, p.id: pose}
@@ -127,44 +126,70 @@ class CandidateEnergy:
         new.clear = {**self.clear, p.id: clear}
         zone = front_boxes(p.x, p.z, p.rotation, p.width, p.depth, clear) if clear > 0 else None
         new.zones = {**self.zones, p.id: zone} if zone is not None else dict(self.zones)
-
-        oc = cons.objects[p.id]
-        e, _ = placement(oc.placement, pose, room.width, room.depth)
-        touching = wall_clearance(pose, room.width, room.depth) <= WALL_TOUCH
-        rel_sum = self.rel_sum + float(e[0] * (1 + PRIOR_LAMBDA * self.prior.wall_energy(room.type, self.types[p.id],
-                                                                                         touching)[0]))
-        rel_n = self.rel_n + 1
-        for c in oc.relations:
-            if c.target in self.poses:
-                rel_sum += float(self._rel(c.name, p.id, c.target, pose, self.poses[c.target])[0])
-                rel_n += 1
-        for q in self.placed:
-            for c in cons.objects[q.id].relations:
-                if c.target == p.id:
-                    rel_sum += float(self._rel(c.name, q.id, p.id, self.poses[q.id], pose)[0])
-                    rel_n += 1
-        new.rel_sum, new.rel_n = rel_sum, rel_n
-
-        if len(self.bodies):
-            new.collision_sum = self.collision_sum + float((overlap_many(body, self.bodies)[0] ** 2).sum())
-        area = (body[0, 2] - body[0, 0]) * (body[0, 3] - body[0, 1])
-        inside = overlap_many(body, self.room_box[None])[0, 0]
-        new.oob_sum = self.oob_sum + float((1 - inside / (area + EPS)) ** 2)
-        aff = self.aff_sum
-        if zone is not None:
-            aff += AFF_OUTSIDE * self._outside(zone[None])[0]
-            for j, q in enumerate(self.placed):
-                if not cons.tied(p.id, q.id):
-                    aff += AFF_BLOCKED * (overlap_many(zone[None], self.bodies[j:j + 1])[0, 0] > OVERLAP_TOL)
-        for oid, z in self.zones.items():
-            if not cons.tied(oid, p.id):
-                aff += AFF_BLOCKED * (overlap_many(z[None], body)[0, 0] > OVERLAP_TOL)
-        new.aff_sum = aff
-
+        new._add(self._contribution(p.id, pose, body, zone), 1)
         new.blocked = self._blocked_with(body[0])
         new.reach = new._reachable(new.blocked)
         new.reach_count = _Integral(self.grid, new.reach)
         return new
+
+    def without(self, oid: str, pending: Collection[str] = ()) -> CandidateEnergy:
+        """The set-up with placed object `oid` taken away (to score other poses for it): its contributions
+        subtracted, the grid's blocked cells recomputed. Equals `CandidateEnergy(problem, placed minus oid,
+        pending)` up to float summation order (tested)."""
+        new = object.__new__(CandidateEnergy)
+        new.__dict__.update(self.__dict__)
+        j = next(i for i, q in enumerate(self.placed) if q.id == oid)
+        new.placed, new.pending = self.placed[:j] + self.placed[j + 1:], set(pending)
+        new.poses = {k: v for k, v in self.poses.items() if k != oid}
+        new.bodies = np.delete(self.bodies, j, axis=0)
+        new.clear = {k: v for k, v in self.clear.items() if k != oid}
+        new.zones = {k: v for k, v in self.zones.items() if k != oid}
+        new._add(new._contribution(oid, self.poses[oid], self.bodies[j:j + 1], self.zones.get(oid)), -1)
+        new.blocked = nav.blocked_without(self.grid, self.mesh, self.blocked, self.bodies[j], new.bodies)
+        new.reach = new._reachable(new.blocked)
+        new.reach_count = _Integral(self.grid, new.reach)
+        return new
+
+    def _add(self, contribution: tuple, sign: int) -> None:
+        rel_sum, rel_n, collision, oob, aff = contribution
+        self.rel_sum, self.rel_n = self.rel_sum + sign * rel_sum, self.rel_n + sign * rel_n
+        self.collision_sum += sign * collision
+        self.oob_sum += sign * oob
+        self.aff_sum += sign * aff
+
+    def _contribution(self, oid: str, pose: Poses, body: np.ndarray, zone: np.ndarray | None) -> tuple:
+        """What object `oid` at `pose` (its body (1, 4), its clearance zone or None) adds to the constant
+        terms of this set-up, which does not hold it: (relational sum, relation count, collision, oob,
+        affordance)."""
+        room, cons = self.room, self.problem.constraints
+        oc = cons.objects[oid]
+        e, _ = placement(oc.placement, pose, room.width, room.depth)
+        touching = wall_clearance(pose, room.width, room.depth) <= WALL_TOUCH
+        rel_sum = float(e[0] * (1 + PRIOR_LAMBDA * self.prior.wall_energy(room.type, self.types[oid], touching)[0]))
+        rel_n = 1
+        for c in oc.relations:
+            if c.target in self.poses:
+                rel_sum += float(self._rel(c.name, oid, c.target, pose, self.poses[c.target])[0])
+                rel_n += 1
+        for q in self.placed:
+            for c in cons.objects[q.id].relations:
+                if c.target == oid:
+                    rel_sum += float(self._rel(c.name, q.id, oid, self.poses[q.id], pose)[0])
+                    rel_n += 1
+        collision = float((overlap_many(body, self.bodies)[0] ** 2).sum()) if len(self.bodies) else 0.0
+        area = (body[0, 2] - body[0, 0]) * (body[0, 3] - body[0, 1])
+        inside = overlap_many(body, self.room_box[None])[0, 0]
+        oob = float((1 - inside / (area + EPS)) ** 2)
+        aff = 0.0
+        if zone is not None:
+            aff += AFF_OUTSIDE * self._outside(zone[None])[0]
+            for j, q in enumerate(self.placed):
+                if not cons.tied(oid, q.id):
+                    aff += AFF_BLOCKED * (overlap_many(zone[None], self.bodies[j:j + 1])[0, 0] > OVERLAP_TOL)
+        for other, z in self.zones.items():
+            if not cons.tied(other, oid):
+                aff += AFF_BLOCKED * (overlap_many(z[None], body)[0, 0] > OVERLAP_TOL)
+        return rel_sum, rel_n, collision, oob, aff
 
     def _blocked_with(self, b: np.ndarray) -> np.ndarray:
         return nav.blocked_with(self.mesh, self.blocked, b)

@@ -93,6 +93,11 @@ class Episode:
         self._energy = CandidateEnergy(self.problem, [], pending=self.pending())  # updated step by step
 
     @property
+    def setup(self) -> CandidateEnergy:
+        """The energy set-up of the objects placed by the steps so far (a repair's moves are not in it)."""
+        return self._energy
+
+    @property
     def done(self) -> bool:
         return self.i >= len(self.order)
 

@@ -4,6 +4,8 @@ a few objects made way, and the placement step each move shows the observer."""
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import numpy as np
 
 from models.energy import navigation as nav
@@ -73,28 +75,34 @@ def move_step(obj_id: str, pose: PlacedObject, cands: np.ndarray, legal: np.ndar
 
 def displacements(ep: Episode, obj, cands: np.ndarray, swept: SweptBoxes, placed: list[PlacedObject],
                   among: np.ndarray | None = None, rank: np.ndarray | None = None,
-                  energy: CandidateEnergy | None = None) -> list[tuple[int, list[str]]]:
+                  energy: Callable[[], CandidateEnergy] | None = None, tries: int = TRIES) -> list[tuple[int, list[str]]]:
     """Poses `obj` could take (of `among`, a mask over `cands`; default all) if at most `MAX_BLOCKERS` of
     `placed` (none fixed) were moved away: (pose index, the ids in the way, largest first), highest `rank`
     first (default: all equal), then fewest in the way, then lowest energy (the overlap with them not
-    counted; `energy`: the set-up for `placed`, if made), at most `TRIES`."""
-    way: list[list[int]] = [[] for _ in cands]
+    counted; `energy`: makes the set-up for `placed`, if there is a cheaper way), at most `tries`."""
+    way = np.zeros((len(cands), len(placed)), bool)  # pose i overlaps placed object j
     for j, p in enumerate(placed):
         for idx, area in swept.overlaps(p.body[None]):
-            for i in idx[area > OVERLAP_TOL]:
-                way[i].append(j)
-    fixed = {j for j, p in enumerate(placed) if p.id in ep.problem.fixed}
+            way[idx[area > OVERLAP_TOL], j] = True
+    fixed = np.array([p.id in ep.problem.fixed for p in placed], bool)
+    count = way.sum(axis=1)
     free = hard_filter(ep.scorer, obj, [], cands, swept, False)[0]  # inside, doorways clear
     if among is not None:
         free &= among
-    options = np.array([i for i in np.flatnonzero(free) if 0 < len(way[i]) <= MAX_BLOCKERS and not fixed & set(way[i])],
-                       int)
+    options = np.flatnonzero(free & (count > 0) & (count <= MAX_BLOCKERS) & ~way[:, fixed].any(axis=1))
     if not len(options):
         return []
-    terms = (energy or CandidateEnergy(ep.problem, placed, pending=())).score(obj, cands[options])
-    cost = terms["total"] - WEIGHTS["collision"] * terms["collision"]
     rank = np.zeros(len(cands)) if rank is None else rank
-    order = sorted(range(len(options)), key=lambda k: (-rank[options[k]], len(way[options[k]]), cost[k]))[:TRIES]
+    first = np.lexsort((count[options], -rank[options]))  # stable: pose order breaks ties
+    # the energy is needed only to order the options tied with the `tries`-th best on (rank, count)
+    last = first[min(tries, len(first)) - 1]
+    key = (-rank[options], count[options])
+    keep = np.flatnonzero((key[0] < key[0][last]) | ((key[0] == key[0][last]) & (key[1] <= key[1][last])))
+    options = options[keep]
+    setup = energy() if energy is not None else CandidateEnergy(ep.problem, placed, pending=())
+    terms = setup.score(obj, cands[options])
+    cost = terms["total"] - WEIGHTS["collision"] * terms["collision"]
+    order = np.lexsort((cost, count[options], -rank[options]))[:tries]
     area = {p.id: p.width * p.depth for p in placed}
-    return [(int(options[k]), sorted((placed[j].id for j in way[options[k]]), key=lambda i: -area[i]))
+    return [(int(options[k]), sorted((placed[j].id for j in np.flatnonzero(way[options[k]])), key=lambda i: -area[i]))
             for k in order]

@@ -1,25 +1,38 @@
-"""Constraint polishing after the repairs (not in the paper): a step-wise placer meets an object's relations
+"""Constraints' polish after the repairs (not in the paper): a step-wise placer meets an object's relations
 only to the objects placed before it, and those placed later may break its global placement or leave a
-relation to them unmet. Once every object is down, `polish` moves, one at a time, the objects with a broken
-constraint to the legal pose that meets the most of their constraints, and only when the move is a strict
-gain in met constraints that costs nothing elsewhere: the layout's energy does not rise and no task object
-falls out of the robot's reach. Fixed objects never move; each move is a placement step; its time counts
-in PTO.
+relation to them unmet. Once every object is down, `polish` takes the objects with a broken constraint, most
+broken first, once each, and moves one if that meets strictly more constraints at no cost
+elsewhere: the layout's energy does not rise and no more task objects are out of the robot's reach.
+
+- A free move: the legal pose that meets the most of its constraints, then of lowest energy (of the
+  `CHECKS` best, the first that keeps reach).
+- Else a make-way move: a pose that meets more, where at most `MAX_BLOCKERS` objects stand in the way
+  (`TRIES` such poses, models.placement.moves.displacements); those are placed again, each where it meets the
+  most constraints, then at its lowest energy. A cheap screen (the same placing by constraints alone) drops
+  the poses that cannot meet more before any energy is computed.
+
+Fixed objects never move; each move is a placement step; the time counts in PTO. A `crowded` room gets free
+moves only: there make-way moves cost several ms per object and meet little more (README, Plan2Place).
 """
 
 from __future__ import annotations
+
+from functools import cached_property
 
 import numpy as np
 
 from models.constraints.evaluate import Poses, placement, relation, wall_clearance
 from models.energy.vectorised import CandidateEnergy
+from models.geometry import SweptBoxes
 from models.placement.base import StepObserver
 from models.placement.candidates import PlacedObject
-from models.geometry import SweptBoxes
-from models.placement.greedy import Episode, candidate_bodies
-from models.placement.moves import MAX_BLOCKERS, TRIES, Reach, displacements, legal_poses, move_step, scored
+from models.placement.greedy import Episode, candidate_bodies, hard_filter
+from models.placement.moves import MAX_BLOCKERS, Reach, displacements, legal_poses, move_step
+from models.values import ConstraintPlan
 
-ROUNDS, CHECKS = 2, 20
+CHECKS = 20
+TRIES = 3  # poses tried per make-way move
+CROWDED = 0.5  # share of the floor the plan's objects cover above which no make-way move is tried
 TOL = 1e-9  # energy: "does not rise"
 
 
@@ -43,6 +56,12 @@ def met(ep: Episode, oid: str, cands: np.ndarray, others: list[PlacedObject]) ->
             if c.target == oid:
                 count += relation(c.name, _pose(p), poses)[1]
     return count
+
+
+def crowded(plan: ConstraintPlan) -> bool:
+    """More than `CROWDED` of the floor covered by the plan's objects (only the `dense` set's rooms, 53-65 %;
+    the other sets' stay under 43 %)."""
+    return sum(o.size.x * o.size.z for o in plan.objects) > CROWDED * plan.room.width * plan.room.depth
 
 
 def _pose(p: PlacedObject) -> Poses:
@@ -73,38 +92,48 @@ def _involved(ep: Episode, oid: str, others: list[PlacedObject]) -> int:
     return n + sum(c.target == oid for p in others if p.id in objects for c in objects[p.id].relations)
 
 
-def met_total(ep: Episode, placed: list[PlacedObject]) -> int:
-    """Constraints met in the layout `placed` (globals and relations between placed objects)."""
-    return sum(_own_met(ep, p, placed) for p in placed)
+def met_among(ep: Episode, placed: list[PlacedObject], ids: set[str] | None = None) -> int:
+    """Constraints met in the layout `placed` (globals, relations between placed objects) that involve one of
+    `ids` (default: all); a move of `ids` changes only these."""
+    objects, room = ep.problem.constraints.objects, ep.problem.plan.room
+    by_id = {p.id: p for p in placed}
+    n = 0
+    for p in placed:
+        oc = objects.get(p.id)
+        mine = ids is None or p.id in ids
+        if oc is None:
+            continue
+        pose = _pose(p)
+        if mine:
+            n += int(placement(oc.placement, pose, room.width, room.depth)[1][0])
+        for c in oc.relations:
+            if c.target in by_id and (mine or c.target in ids):
+                n += int(relation(c.name, pose, _pose(by_id[c.target]))[1][0])
+    return n
 
 
-def _own_met(ep: Episode, p: PlacedObject, placed: list[PlacedObject]) -> int:
-    oc, room = ep.problem.constraints.objects.get(p.id), ep.problem.plan.room
-    if oc is None:
-        return 0
-    pose = _pose(p)
-    n = int(placement(oc.placement, pose, room.width, room.depth)[1][0])
-    by_id = {q.id: q for q in placed}
-    return n + sum(int(relation(c.name, pose, _pose(by_id[c.target]))[1][0]) for c in oc.relations if c.target in by_id)
+def _legal_among(ep: Episode, oid: str, placed: list[PlacedObject], memo: dict) -> tuple[np.ndarray, np.ndarray]:
+    """(every candidate pose of `oid`, the indices of its legal ones among `placed`); `memo` keeps them per
+    layout, for the screen and the placing of one move share most."""
+    key = (oid, tuple((p.id, p.x, p.z, p.rotation) for p in placed))
+    if key not in memo:
+        obj = ep.problem.plan.object(oid)
+        cands, body = candidate_bodies(ep.scorer, obj)
+        memo[key] = cands, legal_poses(ep, obj, placed, cands, SweptBoxes(body))
+    return memo[key]
 
 
-def layout_energy(ep: Episode, placed: list[PlacedObject]) -> float:
-    """The energy of the finished layout `placed` (nothing pending), as the steps report it."""
-    last = placed[-1]
-    terms = CandidateEnergy(ep.problem, placed[:-1], pending=()).score(ep.problem.plan.object(last.id), _here(last))
-    return float(terms["total"][0])
-
-
-def _place_again(ep: Episode, movers: list[str], placed: list[PlacedObject]):
+def _place_again(ep: Episode, movers: list[str], energy: CandidateEnergy, placed: list[PlacedObject], memo: dict):
     """(`placed` with `movers` placed again in order, their steps): each at its legal pose meeting the most
-    constraints, then of lowest energy (the later ones pending); None if one has no legal pose."""
+    constraints, then of lowest energy (the later ones pending; `energy`: the set-up of `placed` with
+    `movers[1:]` pending); None if one has no legal pose."""
     placed, steps = list(placed), []
-    energy = CandidateEnergy(ep.problem, placed, pending=movers[1:]) if movers else None
     for k, oid in enumerate(movers):
         obj = ep.problem.plan.object(oid)
-        cands, legal, terms = scored(ep, obj, placed, energy=energy)
+        cands, legal = _legal_among(ep, oid, placed, memo)
         if not len(legal):
             return None
+        terms = energy.score(obj, cands[legal])
         best = int(np.lexsort((terms["total"], -met(ep, oid, cands[legal], placed)))[0])
         placed.append(ep.scorer.place(obj, *(float(v) for v in cands[legal[best]])))
         steps.append(move_step(oid, placed[-1], cands, legal, best, terms))
@@ -112,69 +141,118 @@ def _place_again(ep: Episode, movers: list[str], placed: list[PlacedObject]):
     return placed, steps
 
 
-def _relocation(ep: Episode, reach: Reach, oid: str, energy: float, n_met: int, out: int):
-    """(new layout, steps, its energy) meeting more constraints than `n_met`, with no more energy than
-    `energy` and no more than `out` task objects out of reach, by moving `oid` to a pose that meets more of
-    its constraints: a free pose if one will do, else one where at most `MAX_BLOCKERS` objects stand in the
-    way, placed again (each where it meets the most constraints, then at its lowest energy; `TRIES` such
-    poses); None if no move is found."""
+def _most_met(ep: Episode, movers: list[str], placed: list[PlacedObject], memo: dict) -> list[PlacedObject] | None:
+    """`placed` with `movers` placed again, each at its first legal pose meeting the most constraints (no
+    energy computed: a cheap screen of what `_place_again` can reach); None if one has no legal pose."""
+    placed = list(placed)
+    for oid in movers:
+        cands, legal = _legal_among(ep, oid, placed, memo)
+        if not len(legal):
+            return None
+        best = legal[int(np.argmax(met(ep, oid, cands[legal], placed)))]
+        placed.append(ep.scorer.place(ep.problem.plan.object(oid), *(float(v) for v in cands[best])))
+    return placed
+
+
+class _Standing:
+    """What a move of the layout `ep.placed` may not worsen: its energy (the episode's, as its last step or
+    repair reported it) and how many task objects are out of the robot's reach (computed when first asked)."""
+
+    def __init__(self, ep: Episode):
+        self.ep, self.reach, self.energy = ep, Reach(ep), ep.energy
+
+    @cached_property
+    def out(self) -> int:
+        return len(self.reach.unreachable(self.ep.placed))
+
+    @cached_property
+    def setup(self) -> CandidateEnergy:
+        """The energy set-up of the layout (the episode's last one, if no repair has moved anything since)."""
+        last = self.ep.setup
+        if [(p.id, p.x, p.z, p.rotation) for p in last.placed] == [(p.id, p.x, p.z, p.rotation) for p in self.ep.placed]:
+            return last
+        return CandidateEnergy(self.ep.problem, self.ep.placed)
+
+    def moved(self, placed: list[PlacedObject], energy: float) -> None:
+        self.ep.placed, self.ep.energy = placed, energy
+        self.ep.terms = {**self.ep.terms, "total": energy}
+        self.energy = energy
+        self.__dict__.pop("out", None)
+        self.__dict__.pop("setup", None)
+
+
+def _relocation(ep: Episode, now: _Standing, oid: str, make_way: bool = True):
+    """(new layout, steps, its energy) meeting more constraints than `now` with no more energy and no more
+    task objects out of reach, by a free or (with `make_way`) a make-way move of `oid` (see the module); None
+    if none is found."""
     current = next(p for p in ep.placed if p.id == oid)
     others = [p for p in ep.placed if p is not current]
     obj = ep.problem.plan.object(oid)
     cands, body = candidate_bodies(ep.scorer, obj)
     gain = met(ep, oid, cands, others) - int(met(ep, oid, _here(current), others)[0])
-    if not (gain > 0).any():
+    better = np.flatnonzero(gain > 0)
+    if not len(better):
         return None
+    # from here on only the poses that meet more (the steps' heat-map shows those)
+    cands, body, gain = cands[better], body[better], gain[better]
     swept = SweptBoxes(body)
     legal = legal_poses(ep, obj, others, cands, swept, relax=False)
-    legal = legal[gain[legal] > 0]
-    setup = CandidateEnergy(ep.problem, others, pending=())
+    made: list[CandidateEnergy] = []
+
+    def setup() -> CandidateEnergy:  # the energy set-up with the others where they are, made when first needed
+        if not made:
+            made.append(now.setup.without(oid))
+        return made[0]
+
     if len(legal):
-        terms = setup.score(obj, cands[legal])
+        terms = setup().score(obj, cands[legal])
         for k in np.lexsort((terms["total"], -gain[legal]))[:CHECKS]:
-            if terms["total"][k] > energy + TOL:
+            if terms["total"][k] > now.energy + TOL:
                 continue
             pose = ep.scorer.place(obj, *(float(v) for v in cands[legal[k]]))
-            if len(reach.unreachable([*others, pose])) <= out:
+            if len(now.reach.unreachable([*others, pose])) <= now.out:
                 return [*others, pose], [move_step(oid, pose, cands, legal, int(k), terms)], float(terms["total"][k])
-    for i, blockers in displacements(ep, obj, cands, swept, others, among=gain > 0, rank=gain, energy=setup):
+    if not make_way:
+        return None
+    for i, blockers in displacements(ep, obj, cands, swept, others, rank=gain, energy=setup, tries=TRIES):
         placed = [p for p in others if p.id not in blockers]
-        if i not in legal_poses(ep, obj, placed, cands, swept):
+        if not hard_filter(ep.scorer, obj, placed, cands[[i]], SweptBoxes(body[[i]]))[0][0]:
             continue
         pose = ep.scorer.place(obj, *(float(v) for v in cands[i]))
-        again = _place_again(ep, blockers, [*placed, pose])
+        changed = {oid, *blockers}
+        was = met_among(ep, ep.placed, changed)
+        memo: dict = {}
+        screen = _most_met(ep, blockers, [*placed, pose], memo)
+        if screen is None or met_among(ep, screen, changed) <= was:
+            continue
+        base = setup()
+        for b in blockers:
+            base = base.without(b)
+        again = _place_again(ep, blockers, base.after(pose, pending=blockers[1:]), [*placed, pose], memo)
         if again is None:
             continue
         placed, steps = again
-        if met_total(ep, placed) <= n_met or len(reach.unreachable(placed)) > out:
+        if met_among(ep, placed, changed) <= was or len(now.reach.unreachable(placed)) > now.out:
             continue
         new_energy = steps[-1].terms["total"]  # the last one placed again: nothing pending
-        if new_energy <= energy + TOL:
+        if new_energy <= now.energy + TOL:
             final = {t: np.array([v]) for t, v in steps[-1].terms.items()}  # its step shows the final layout's
             return placed, [move_step(oid, pose, cands, np.array([i]), 0, final), *steps], new_energy
     return None
 
 
 def polish(ep: Episode, observer: StepObserver | None = None) -> list[str]:
-    """Move objects of the finished episode `ep` whose constraints are broken while a move meets more of
-    them at no cost (`ROUNDS` passes over the broken ones); the ids moved, in order."""
+    """Move objects of the finished episode `ep` whose constraints are broken, each once, most broken first,
+    when a move meets more of them at no cost (no make-way move in a `crowded` room); the ids moved, in order."""
     moved: list[str] = []
-    if not ep.placed:
-        return moved
-    reach = Reach(ep)
-    energy, n_met, out = layout_energy(ep, ep.placed), met_total(ep, ep.placed), len(reach.unreachable(ep.placed))
-    for _ in range(ROUNDS):
-        before = len(moved)
-        for oid in broken(ep):
-            move = _relocation(ep, reach, oid, energy, n_met, out)
-            if move is None:
-                continue
-            ep.placed, steps, energy = move
-            n_met, out = met_total(ep, ep.placed), len(reach.unreachable(ep.placed))
-            ep.energy, ep.terms = energy, {**ep.terms, "total": energy}
-            moved += [s.object_id for s in steps]
-            for step in steps if observer is not None else ():
-                observer(step)
-        if len(moved) == before:
-            break
+    now, make_way = _Standing(ep), not crowded(ep.problem.plan)
+    for oid in broken(ep):
+        move = _relocation(ep, now, oid, make_way)
+        if move is None:
+            continue
+        placed, steps, energy = move
+        now.moved(placed, energy)
+        moved += [s.object_id for s in steps]
+        for step in steps if observer is not None else ():
+            observer(step)
     return moved
