@@ -100,20 +100,29 @@ def reachable_from(blocked: np.ndarray, start: np.ndarray) -> np.ndarray:
     return keep[labels]
 
 
+def _window(mesh: tuple[np.ndarray, np.ndarray], b: np.ndarray, radius: float):
+    """(row slice, column slice, their cell centres x, z): the cells a robot of `radius` near box b touches."""
+    gx, gz = mesh
+    xs, zs = gx[:, 0], gz[0]
+    margin = radius + (xs[1] - xs[0] if len(xs) > 1 else 0.0)
+    rows = slice(np.searchsorted(xs, b[0] - margin), np.searchsorted(xs, b[2] + margin, side="right"))
+    cols = slice(np.searchsorted(zs, b[1] - margin), np.searchsorted(zs, b[3] + margin, side="right"))
+    return rows, cols, gx[rows, cols], gz[rows, cols]
+
+
+def _near(b: np.ndarray, wx: np.ndarray, wz: np.ndarray, radius: float) -> np.ndarray:
+    dx = np.maximum(0, np.maximum(b[0] - wx, wx - b[2]))
+    dz = np.maximum(0, np.maximum(b[1] - wz, wz - b[3]))
+    return dx * dx + dz * dz <= radius * radius + 1e-12
+
+
 def blocked_with(mesh: tuple[np.ndarray, np.ndarray], blocked: np.ndarray, b: np.ndarray,
                  radius: float = ROBOT_RADIUS) -> np.ndarray:
     """`blocked | blocked_by_boxes(grid, [b])` for a grid whose walls `blocked` already holds, evaluated only
     on the cells near the box b (farther cells are more than the robot's radius away); `mesh`: grid.mesh()."""
-    gx, gz = mesh
-    xs, zs = gx[:, 0], gz[0]
-    margin = radius + (xs[1] - xs[0] if len(xs) > 1 else 0.0)
-    i0, i1 = np.searchsorted(xs, b[0] - margin), np.searchsorted(xs, b[2] + margin, side="right")
-    j0, j1 = np.searchsorted(zs, b[1] - margin), np.searchsorted(zs, b[3] + margin, side="right")
-    wx, wz = gx[i0:i1, j0:j1], gz[i0:i1, j0:j1]
-    dx = np.maximum(0, np.maximum(b[0] - wx, wx - b[2]))
-    dz = np.maximum(0, np.maximum(b[1] - wz, wz - b[3]))
+    rows, cols, wx, wz = _window(mesh, b, radius)
     out = blocked.copy()
-    out[i0:i1, j0:j1] |= dx * dx + dz * dz <= radius * radius + 1e-12
+    out[rows, cols] |= _near(b, wx, wz, radius)
     return out
 
 
@@ -121,19 +130,12 @@ def blocked_without(grid: Grid, mesh: tuple[np.ndarray, np.ndarray], blocked: np
                     others: np.ndarray, radius: float = ROBOT_RADIUS) -> np.ndarray:
     """`blocked_by_boxes(grid, others)` for a grid `blocked` that also holds box b: only the cells near b
     (those b can block) are labelled again, by the walls and the `others` (M, 4) that reach them."""
-    gx, gz = mesh
-    xs, zs = gx[:, 0], gz[0]
-    margin = radius + (xs[1] - xs[0] if len(xs) > 1 else 0.0)
-    i0, i1 = np.searchsorted(xs, b[0] - margin), np.searchsorted(xs, b[2] + margin, side="right")
-    j0, j1 = np.searchsorted(zs, b[1] - margin), np.searchsorted(zs, b[3] + margin, side="right")
-    wx, wz = gx[i0:i1, j0:j1], gz[i0:i1, j0:j1]
+    rows, cols, wx, wz = _window(mesh, b, radius)
     window = (wx < radius) | (wz < radius) | (wx > grid.width - radius) | (wz > grid.depth - radius)
     for o in np.asarray(others, float).reshape(-1, 4):
-        dx = np.maximum(0, np.maximum(o[0] - wx, wx - o[2]))
-        dz = np.maximum(0, np.maximum(o[1] - wz, wz - o[3]))
-        window |= dx * dx + dz * dz <= radius * radius + 1e-12
+        window |= _near(o, wx, wz, radius)
     out = blocked.copy()
-    out[i0:i1, j0:j1] = window
+    out[rows, cols] = window
     return out
 
 
