@@ -92,15 +92,15 @@ def _involved(ep: Episode, oid: str, others: list[PlacedObject]) -> int:
     return n + sum(c.target == oid for p in others if p.id in objects for c in objects[p.id].relations)
 
 
-def met_among(ep: Episode, placed: list[PlacedObject], ids: set[str] | None = None) -> int:
+def met_among(ep: Episode, placed: list[PlacedObject], ids: set[str]) -> int:
     """Constraints met in the layout `placed` (globals, relations between placed objects) that involve one of
-    `ids` (default: all); a move of `ids` changes only these."""
+    `ids`: a move of `ids` changes only these."""
     objects, room = ep.problem.constraints.objects, ep.problem.plan.room
     by_id = {p.id: p for p in placed}
     n = 0
     for p in placed:
         oc = objects.get(p.id)
-        mine = ids is None or p.id in ids
+        mine = p.id in ids
         if oc is None:
             continue
         pose = _pose(p)
