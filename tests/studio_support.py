@@ -80,9 +80,13 @@ def session_of(studio, before: set[int]):
     return studio.sessions[new[0]]
 
 
-def generate(page, instruction: str, room: str, run: int | None = None):
+def generate(page, session, instruction: str, room: str, run: int | None = None):
+    """Type, choose, wait until the tab's `session` has both (the inputs reach the server a moment later:
+    under load a click could come first), then Generate."""
     field(page, "Instruction").fill(instruction)
     choose(page, "Room type", room)
+    wait_until(page, lambda: session.instruction.value == instruction and session.room.value == room,
+               "the instruction and the room type on the server")
     page.get_by_role("button", name="Generate").click()
     page.get_by_text(re.compile(rf"Scene ready \(#{run}\)" if run else "Scene ready")).wait_for(timeout=WAIT)
 

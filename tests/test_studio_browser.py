@@ -18,7 +18,7 @@ def test_designer_flow(browser, studio):
     before = set(studio.sessions)
     page = open_studio(browser, studio)
     session = session_of(studio, before)
-    generate(page, "Put a chilled bread on the counter", "kitchen")
+    generate(page, session, "Put a chilled bread on the counter", "kitchen")
     graph = page.get_by_text("Key objects:").locator("xpath=..")
     assert "Bread" in graph.inner_text()
     assert "Fridge" in page.get_by_text("Inference objects:").locator("xpath=..").inner_text()
@@ -88,9 +88,14 @@ def test_designer_flow(browser, studio):
 
 
 def test_two_designers_do_not_see_each_other(browser, studio):
-    a, b = open_studio(browser, studio), open_studio(browser, studio)
-    generate(a, "Put a chilled bread on the counter", "kitchen")
-    generate(b, "Look at the book under the desk lamp", "bedroom")
+    before = set(studio.sessions)
+    a = open_studio(browser, studio)
+    session_a = session_of(studio, before)
+    before = set(studio.sessions)
+    b = open_studio(browser, studio)
+    session_b = session_of(studio, before)
+    generate(a, session_a, "Put a chilled bread on the counter", "kitchen")
+    generate(b, session_b, "Look at the book under the desk lamp", "bedroom")
     assert "Bread" in a.get_by_text("Key objects:").locator("xpath=..").inner_text()
     assert "Book" in b.get_by_text("Key objects:").locator("xpath=..").inner_text()
     assert "Book" not in a.get_by_text("Key objects:").locator("xpath=..").inner_text()

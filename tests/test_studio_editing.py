@@ -32,7 +32,7 @@ def test_room_in_view_after_orbit_and_generate(browser, studio):
     before = set(studio.sessions)
     page = open_studio(browser, studio)
     session = session_of(studio, before)
-    generate(page, "Put a chilled bread on the counter", "kitchen", run=1)
+    generate(page, session, "Put a chilled bread on the counter", "kitchen", run=1)
     settle(page)
     page.mouse.move(300, 700)  # orbit and zoom with the real mouse, far from the room's framing
     page.mouse.down()
@@ -41,7 +41,7 @@ def test_room_in_view_after_orbit_and_generate(browser, studio):
     for _ in range(6):
         page.mouse.wheel(0, -400)
     settle(page)
-    generate(page, "Look at the book under the desk lamp", "bedroom", run=2)
+    generate(page, session, "Look at the book under the desk lamp", "bedroom", run=2)
     settle(page, 6)
     width, height = page.viewport_size["width"], page.viewport_size["height"]
     free = width - PANEL_PX
@@ -73,7 +73,7 @@ def test_drag_into_collision_warns_asks_before_saving_and_undo_restores(browser,
     before = set(studio.sessions)
     page = open_studio(browser, studio)
     session = session_of(studio, before)
-    generate(page, "Put a chilled bread on the counter", "kitchen")
+    generate(page, session, "Put a chilled bread on the counter", "kitchen")
     settle(page)
     fridge = session.state.gen.layout.placement("fridge-0")
     counter = session.state.gen.layout.placement("countertop-0")
@@ -131,7 +131,7 @@ def test_downloads_are_the_selected_version(browser, studio):
     before = set(studio.sessions)
     page = open_studio(browser, studio)
     session = session_of(studio, before)
-    generate(page, "Put a chilled bread on the counter", "kitchen")
+    generate(page, session, "Put a chilled bread on the counter", "kitchen")
     page.get_by_role("tab", name="Scenes").click()
     field(page, "Name").fill("versions")
     page.get_by_role("button", name="Accept & save").click()
