@@ -1,8 +1,9 @@
 """The placement benchmark: any registered solver by name, n/a plans counted, the complete-runs table."""
 
+import json
 from types import SimpleNamespace
 
-from app.bench.placement import complete_everywhere, main, table
+from app.bench.placement import complete_everywhere, main, pto_medians, table
 
 
 def test_bench_runs_registered_solvers_and_reports_both_tables(tmp_path, capsys):
@@ -31,3 +32,13 @@ def test_plan2place_bench_chooses_checkpoints_on_varied_validation_plans(tmp_pat
     assert plan2place_main(args) == 0
     text = (tmp_path / "plan2place.md").read_text()
     assert "2 `varied` plans" in text and "| greedy |" in text and "| plan2place (" in text
+
+
+def test_pto_medians_come_from_the_stored_runs(tmp_path):
+    runs = [{"solver": s, "pto": t} for s, ts in (("human", [0.0]), ("dfs", [0.001, 0.002, 0.009]),
+                                                   ("plan2place", [0.003, 0.004, 0.100])) for t in ts]
+    (tmp_path / "placement-seen").mkdir()
+    (tmp_path / "placement-seen" / "results.json").write_text(json.dumps(runs))
+    table = pto_medians(tmp_path)
+    assert "| dfs | 2.0 (1.00 x dfs) |" in table and "| plan2place | 4.0 (2.00 x dfs) |" in table
+    assert "human" not in table  # the people's arrangement took no time to place
