@@ -22,7 +22,8 @@ def _finished(plan, fixed=None):
 
 def _judged(plan, ep):
     layout = ep.layout("greedy", 0, 0.0)
-    return scene_metrics(plan, layout), layout_energy(plan, layout.placements).total, len(Reach(ep).unreachable(ep.placed))
+    out_of_reach = len(Reach(ep).unreachable(ep.placed))
+    return scene_metrics(plan, layout), layout_energy(plan, layout.placements).total, out_of_reach
 
 
 @pytest.mark.parametrize("pid, alone", [("seen-00037", True),  # the coffee table alone

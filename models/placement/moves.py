@@ -46,7 +46,7 @@ class Reach:
 
 
 def legal_poses(ep: Episode, obj, placed: list[PlacedObject], cands: np.ndarray, swept: SweptBoxes,
-           relax: bool = True) -> np.ndarray:
+                relax: bool = True) -> np.ndarray:
     """Indices of the legal poses among `cands`; with `relax`, the front-clearance rules relaxed if none
     is legal with them (as `Episode.options` does)."""
     ok, _ = hard_filter(ep.scorer, obj, placed, cands, swept, True)
@@ -55,31 +55,32 @@ def legal_poses(ep: Episode, obj, placed: list[PlacedObject], cands: np.ndarray,
     return np.flatnonzero(ok)
 
 
-def scored(ep: Episode, obj, placed: list[PlacedObject], pending=(), relax: bool = True,
-            energy: CandidateEnergy | None = None):
+def scored(ep: Episode, obj, placed: list[PlacedObject], pending=(), relax: bool = True):
     """(every candidate pose of `obj`, the indices of the legal ones, their energy terms with `placed` where
-    they are and `pending` still to come); no terms when none is legal. `energy`: that set-up, if made."""
+    they are and `pending` still to come); no terms when none is legal."""
     cands, body = candidate_bodies(ep.scorer, obj)
     legal = legal_poses(ep, obj, placed, cands, SweptBoxes(body), relax)
     if not len(legal):
         return cands, legal, {}
-    energy = energy or CandidateEnergy(ep.problem, placed, pending=pending)
-    return cands, legal, energy.score(obj, cands[legal])
+    return cands, legal, CandidateEnergy(ep.problem, placed, pending=pending).score(obj, cands[legal])
 
 
-def move_step(obj_id: str, pose: PlacedObject, cands: np.ndarray, legal: np.ndarray, k: int, terms: dict) -> PlacementStep:
+def move_step(obj_id: str, pose: PlacedObject, cands: np.ndarray, legal: np.ndarray, k: int,
+              terms: dict) -> PlacementStep:
+    """The step a move shows: the chosen pose `legal[k]` as the only choice among the legal ones."""
     scores = np.full(len(cands), -np.inf)
     scores[legal], scores[legal[k]] = 0.0, 1.0
-    return PlacementStep(obj_id, pose.x, pose.z, pose.rotation, cands, scores, {t: float(v[k]) for t, v in terms.items()})
+    return PlacementStep(obj_id, pose.x, pose.z, pose.rotation, cands, scores,
+                         {t: float(v[k]) for t, v in terms.items()})
 
 
 def displacements(ep: Episode, obj, cands: np.ndarray, swept: SweptBoxes, placed: list[PlacedObject],
-                  among: np.ndarray | None = None, rank: np.ndarray | None = None,
-                  energy: Callable[[], CandidateEnergy] | None = None, tries: int = TRIES) -> list[tuple[int, list[str]]]:
-    """Poses `obj` could take (of `among`, a mask over `cands`; default all) if at most `MAX_BLOCKERS` of
-    `placed` (none fixed) were moved away: (pose index, the ids in the way, largest first), highest `rank`
-    first (default: all equal), then fewest in the way, then lowest energy (the overlap with them not
-    counted; `energy`: makes the set-up for `placed`, if there is a cheaper way), at most `tries`."""
+                  rank: np.ndarray | None = None, energy: Callable[[], CandidateEnergy] | None = None,
+                  tries: int = TRIES) -> list[tuple[int, list[str]]]:
+    """Poses of `cands` that `obj` could take if at most `MAX_BLOCKERS` of `placed` (none fixed) were moved
+    away: (pose index, the ids in the way, largest first), highest `rank` first (default: all equal), then
+    fewest in the way, then lowest energy (the overlap with them not counted; `energy`: makes the set-up for
+    `placed`, if there is a cheaper way), at most `tries`."""
     way = np.zeros((len(cands), len(placed)), bool)  # pose i overlaps placed object j
     for j, p in enumerate(placed):
         for idx, area in swept.overlaps(p.body[None]):
@@ -87,8 +88,6 @@ def displacements(ep: Episode, obj, cands: np.ndarray, swept: SweptBoxes, placed
     fixed = np.array([p.id in ep.problem.fixed for p in placed], bool)
     count = way.sum(axis=1)
     free = hard_filter(ep.scorer, obj, [], cands, swept, False)[0]  # inside, doorways clear
-    if among is not None:
-        free &= among
     options = np.flatnonzero(free & (count > 0) & (count <= MAX_BLOCKERS) & ~way[:, fixed].any(axis=1))
     if not len(options):
         return []

@@ -6,9 +6,9 @@ elsewhere: the layout's energy does not rise and no more task objects are out of
 
 - A free move: the legal pose that meets the most of its constraints, then of lowest energy (of the
   `CHECKS` best, the first that keeps reach).
-- Else a make-way move: a pose that meets more, where at most `MAX_BLOCKERS` objects stand in the way
-  (`TRIES` such poses, models.placement.moves.displacements); those are placed again, each where it meets the
-  most constraints, then at its lowest energy. A cheap screen (the same placing by constraints alone) drops
+- Else a make-way move: a pose that meets more, where at most `moves.MAX_BLOCKERS` objects stand in the way
+  (`MAKE_WAY_POSES` such poses, models.placement.moves.displacements); those are placed again, each where it
+  meets the most constraints, then at its lowest energy. A cheap screen (the same placing by constraints alone) drops
   the poses that cannot meet more before any energy is computed.
 
 Fixed objects never move; each move is a placement step; the time counts in PTO. A `crowded` room gets free
@@ -27,11 +27,11 @@ from models.geometry import SweptBoxes
 from models.placement.base import StepObserver
 from models.placement.candidates import PlacedObject
 from models.placement.greedy import Episode, candidate_bodies, hard_filter
-from models.placement.moves import MAX_BLOCKERS, Reach, displacements, legal_poses, move_step
+from models.placement.moves import Reach, displacements, legal_poses, move_step
 from models.values import ConstraintPlan
 
 CHECKS = 20
-TRIES = 3  # poses tried per make-way move
+MAKE_WAY_POSES = 3  # poses tried per make-way move
 CROWDED = 0.5  # share of the floor the plan's objects cover above which no make-way move is tried
 TOL = 1e-9  # energy: "does not rise"
 
@@ -66,6 +66,10 @@ def crowded(plan: ConstraintPlan) -> bool:
 
 def _pose(p: PlacedObject) -> Poses:
     return Poses.one(p.x, p.z, p.rotation, p.width, p.depth)
+
+
+def _key(p: PlacedObject) -> tuple:
+    return p.id, p.x, p.z, p.rotation
 
 
 def _here(p: PlacedObject) -> np.ndarray:
@@ -115,7 +119,7 @@ def met_among(ep: Episode, placed: list[PlacedObject], ids: set[str]) -> int:
 def _legal_among(ep: Episode, oid: str, placed: list[PlacedObject], memo: dict) -> tuple[np.ndarray, np.ndarray]:
     """(every candidate pose of `oid`, the indices of its legal ones among `placed`); `memo` keeps them per
     layout, for the screen and the placing of one move share most."""
-    key = (oid, tuple((p.id, p.x, p.z, p.rotation) for p in placed))
+    key = (oid, tuple(_key(p) for p in placed))
     if key not in memo:
         obj = ep.problem.plan.object(oid)
         cands, body = candidate_bodies(ep.scorer, obj)
@@ -169,7 +173,7 @@ class _Standing:
     def setup(self) -> CandidateEnergy:
         """The energy set-up of the layout (the episode's last one, if no repair has moved anything since)."""
         last = self.ep.setup
-        if [(p.id, p.x, p.z, p.rotation) for p in last.placed] == [(p.id, p.x, p.z, p.rotation) for p in self.ep.placed]:
+        if [_key(p) for p in last.placed] == [_key(p) for p in self.ep.placed]:
             return last
         return CandidateEnergy(self.ep.problem, self.ep.placed)
 
@@ -214,7 +218,7 @@ def _relocation(ep: Episode, now: _Standing, oid: str, make_way: bool = True):
                 return [*others, pose], [move_step(oid, pose, cands, legal, int(k), terms)], float(terms["total"][k])
     if not make_way:
         return None
-    for i, blockers in displacements(ep, obj, cands, swept, others, rank=gain, energy=setup, tries=TRIES):
+    for i, blockers in displacements(ep, obj, cands, swept, others, rank=gain, energy=setup, tries=MAKE_WAY_POSES):
         placed = [p for p in others if p.id not in blockers]
         if not hard_filter(ep.scorer, obj, placed, cands[[i]], SweptBoxes(body[[i]]))[0][0]:
             continue

@@ -4,8 +4,9 @@ move is a placement step for the observer, fixed objects never move, and their t
 third pass, the constraints' polish, is in models.placement.polish.
 
 - `make_room`: an object left out for want of room is placed where at most `MAX_BLOCKERS` placed objects
-  (models.placement.moves) stand in its way (fewest first, then its lowest energy; `TRIES` such poses), and those are placed again,
-  largest first, each at its lowest-energy legal pose; if one finds none, the next pose is tried.
+  stand in its way (fewest first, then its lowest energy; `TRIES` such poses; models.placement.moves), and
+  those are placed again, largest first, each at its lowest-energy legal pose; if one finds none, the next
+  pose is tried.
 - `restore_access`: a task object placed early can have its access strip walled off by objects placed
   later (the energy's navigation term sees only the objects placed so far and is traded against the
   relations). When some task object cannot be reached from the doorway (Key_NAV's test: a free cell of

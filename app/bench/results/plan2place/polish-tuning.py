@@ -22,7 +22,7 @@ for name, v in VARIANTS.items():
         for p in plans:
             ep = Episode(p); ep.finish_greedily(); R.make_room(ep); R.restore_access(ep)
             if v is not None:
-                PL.TRIES = v.get("tries", 3)
+                PL.MAKE_WAY_POSES = v.get("tries", 3)
                 orig_crowded = PL.crowded
                 if v.get("crowded") is False:
                     PL.crowded = lambda plan: False
