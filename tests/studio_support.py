@@ -61,9 +61,20 @@ def field(page, label: str):
     return row.locator("input, textarea").first
 
 
-def choose(page, label: str, option: str):
+def choose(page, label: str, option: str, handle=None):
+    """Pick a dropdown option; with the server's `handle`, wait until the server holds it (see `enter`)."""
     field(page, label).click()
     page.get_by_role("option", name=option).first.click()
+    if handle is not None:
+        wait_until(page, lambda: handle.value == option, f"{label} = {option!r} on the server")
+
+
+def enter(page, label: str, value, handle):
+    """Type `value` into an input and wait until the server's `handle` holds it. viser's client sends every
+    input's updates through one 50 ms throttle that keeps only the latest message, so an input changed
+    within 50 ms of another would lose its update (seen in CI: the rooms typed right after the room type)."""
+    field(page, label).fill(str(value))
+    wait_until(page, lambda: handle.value == value, f"{label} = {value!r} on the server")
 
 
 def open_studio(browser, studio):
@@ -81,12 +92,9 @@ def session_of(studio, before: set[int]):
 
 
 def generate(page, session, instruction: str, room: str, run: int | None = None):
-    """Type, choose, wait until the tab's `session` has both (the inputs reach the server a moment later:
-    under load a click could come first), then Generate."""
-    field(page, "Instruction").fill(instruction)
-    choose(page, "Room type", room)
-    wait_until(page, lambda: session.instruction.value == instruction and session.room.value == room,
-               "the instruction and the room type on the server")
+    """Type and choose, each waiting until the tab's `session` holds it (see `enter`), then Generate."""
+    enter(page, "Instruction", instruction, session.instruction)
+    choose(page, "Room type", room, session.room)
     page.get_by_role("button", name="Generate").click()
     page.get_by_text(re.compile(rf"Scene ready \(#{run}\)" if run else "Scene ready")).wait_for(timeout=WAIT)
 

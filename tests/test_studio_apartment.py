@@ -7,8 +7,8 @@ import re
 from pathlib import Path
 
 import pytest
-from studio_support import (SCREENSHOTS, WAIT, browser, choose, field, open_studio, session_of, studio,  # noqa: F401
-                            wait_until)
+from studio_support import (SCREENSHOTS, WAIT, browser, choose, enter, field, open_studio, session_of,  # noqa: F401
+                            studio)
 
 pytest.importorskip("playwright")
 
@@ -17,12 +17,9 @@ def test_apartment_in_the_studio(browser, studio):  # noqa: F811
     before = set(studio.sessions)
     page = open_studio(browser, studio)
     session = session_of(studio, before)
-    choose(page, "Room type", "apartment")
-    field(page, "Rooms (apartment)").fill("kitchen, living room, bedroom")
-    field(page, "Seed").fill("4")  # an apartment whose kitchen the robot reaches (the path is drawn)
-    # the inputs reach the server a moment after typing: under load a click could come first (seen once in CI)
-    wait_until(page, lambda: int(session.seed.value) == 4 and session.rooms.value == "kitchen, living room, bedroom",
-               "the seed and the rooms on the server")
+    choose(page, "Room type", "apartment", session.room)
+    enter(page, "Rooms (apartment)", "kitchen, living room, bedroom", session.rooms)
+    enter(page, "Seed", 4, session.seed)  # an apartment whose kitchen the robot reaches (the path is drawn)
     page.get_by_role("button", name="Generate").click()
     page.get_by_text("Apartment ready").wait_for(timeout=WAIT)
     apartment = session.apartment.current

@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 from studio_support import (  # noqa: F401 (browser and studio are fixtures)
-    SCREENSHOTS, WAIT, browser, choose, field, generate, object_xy, open_studio, session_of, settle, studio)
+    SCREENSHOTS, WAIT, browser, choose, enter, field, generate, object_xy, open_studio, session_of, settle, studio)
 
 pytest.importorskip("playwright.sync_api")
 
@@ -41,11 +41,11 @@ def test_designer_flow(browser, studio):
     page.get_by_role("tab", name="Constraints").click()
     raw = field(page, "Raw constraints")
     original = raw.input_value()
-    raw.fill(original + "\nghost-line | levitate")
+    enter(page, "Raw constraints", original + "\nghost-line | levitate", session.c_text)
     page.get_by_role("button", name="Apply text").click()
     page.get_by_text(re.compile("Edit not applied")).wait_for(timeout=WAIT)
     edited = re.sub(r"fridge-0 \| edge[^\n]*", "fridge-0 | middle | far, countertop-0", original)
-    raw.fill(edited)
+    enter(page, "Raw constraints", edited, session.c_text)
     page.get_by_role("button", name="Apply text").click()
     moved = page.get_by_text(re.compile("Re-placed after the edit"))
     moved.wait_for(timeout=WAIT)
@@ -58,7 +58,7 @@ def test_designer_flow(browser, studio):
     assert session.state.gen.plan.constraints == edited
 
     page.get_by_role("tab", name="Scenes").click()
-    field(page, "Name").fill("bread in the browser")
+    enter(page, "Name", "bread in the browser", session.save_name)
     page.get_by_role("button", name="Accept & save").click()
     if session.state.findings:  # the re-placed scene may fail a check: the designer confirms
         page.get_by_role("button", name="Save anyway").click()

@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 from PIL import Image
 from studio_support import (  # noqa: F401 (browser and studio are fixtures)
-    WAIT, browser, choose, field, generate, object_xy, open_studio, screen_xy, session_of, settle, studio, wait_until)
+    WAIT, browser, choose, enter, field, generate, object_xy, open_studio, screen_xy, session_of, settle, studio, wait_until)
 
 from frontend.camera import PANEL_PX, room_points
 from models.exports.procthor_house import to_house
@@ -133,7 +133,7 @@ def test_downloads_are_the_selected_version(browser, studio):
     session = session_of(studio, before)
     generate(page, session, "Put a chilled bread on the counter", "kitchen")
     page.get_by_role("tab", name="Scenes").click()
-    field(page, "Name").fill("versions")
+    enter(page, "Name", "versions", session.save_name)
     page.get_by_role("button", name="Accept & save").click()
     if session.state.findings:  # the placer's own layout may already fail a check (asked before saving)
         page.get_by_role("button", name="Save anyway").click()
@@ -142,7 +142,7 @@ def test_downloads_are_the_selected_version(browser, studio):
     settle(page)
     page.mouse.click(*object_xy(session, "stool-3", 0.9))  # a typed-in pose and a turn, in the picked panel
     wait_until(page, lambda: session.selected == "stool-3", "stool-3 picked")
-    field(page, "x (m)").fill(f"{stool.x - 0.4:.2f}")
+    enter(page, "x (m)", round(stool.x - 0.4, 2), session.pose_x)
     page.get_by_role("button", name="Apply pose").click()
     page.get_by_text(re.compile(r"Moved `?stool-3`? .*typed pose")).wait_for(timeout=WAIT)
     page.get_by_role("button", name="+90°").click()
