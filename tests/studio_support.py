@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import random
 import re
+import time
 from pathlib import Path
 
 import numpy as np
@@ -85,10 +86,16 @@ def open_studio(browser, studio):
 
 
 def session_of(studio, before: set[int]):
-    """The session of the tab that connected after `before` (the ids of the sessions there were)."""
-    new = [sid for sid in studio.sessions if sid not in before]
-    assert len(new) == 1
-    return studio.sessions[new[0]]
+    """The session of the tab that connected after `before` (the ids of the sessions there were). The studio
+    registers a session once its panel is built, and the tab may draw the panel's first buttons before that
+    (seen in CI): wait for it."""
+    for _ in range(WAIT // 100):
+        new = [sid for sid in list(studio.sessions) if sid not in before]
+        if new:
+            assert len(new) == 1, f"{len(new)} new sessions"
+            return studio.sessions[new[0]]
+        time.sleep(0.1)
+    pytest.fail("the tab's session never registered")
 
 
 def generate(page, session, instruction: str, room: str, run: int | None = None):
