@@ -29,6 +29,7 @@ TURN_BINS = 3  # |relative yaw| near 0, 90 or 180 degrees
 WALL_TOUCH = 0.15
 ALPHA = 1.0
 POOLED = "*"
+COMPANION_GAP, COMPANION_SHARE, COMPANION_SEEN = 1.0, 0.6, 3  # RelationPrior.companion_gap
 OUT = Path(__file__).resolve().parent.parent / "data" / "relation_prior.json"
 
 
@@ -110,6 +111,21 @@ class RelationPrior:
             return np.zeros(np.broadcast(np.asarray(gap), np.asarray(rel_yaw)).shape)
         entry = self.pairs[key]
         return 0.5 * (_surprise(entry["gap"], gap_bin(gap)) + _surprise(entry["turn"], turn_bin(rel_yaw)))
+
+    def companion_gap(self, room: str, a: str, b: str) -> float | None:
+        """If A keeps a B near by habit (of at least `COMPANION_SEEN` A's in rooms with a B, at least
+        `COMPANION_SHARE` have their nearest B within `COMPANION_GAP`): the gap bin edge that share stays
+        within; else None."""
+        key = self._key(self.pairs, room, a, b)
+        if key is None:
+            return None
+        counts = np.asarray(self.pairs[key]["gap"], float)
+        edges = (*GAP_BINS[1:], math.inf)  # each bin's upper edge
+        share = np.cumsum(counts) / max(counts.sum(), 1.0)
+        k = int(np.searchsorted(share, COMPANION_SHARE - 1e-9))
+        if counts.sum() < COMPANION_SEEN or edges[k] > COMPANION_GAP:
+            return None
+        return edges[k]
 
     def wall_energy(self, room: str, a: str, touching) -> np.ndarray:
         key = self._key(self.walls, room, a)

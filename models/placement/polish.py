@@ -72,7 +72,7 @@ def _key(p: PlacedObject) -> tuple:
     return p.id, p.x, p.z, p.rotation
 
 
-def _here(p: PlacedObject) -> np.ndarray:
+def here(p: PlacedObject) -> np.ndarray:
     return np.array([[p.x, p.z, p.rotation]])
 
 
@@ -84,7 +84,7 @@ def broken(ep: Episode) -> list[str]:
             continue
         others = [q for q in ep.placed if q is not p]
         total = _involved(ep, p.id, others)
-        missing[p.id] = total - int(met(ep, p.id, _here(p), others)[0])
+        missing[p.id] = total - int(met(ep, p.id, here(p), others)[0])
     return sorted((i for i, n in missing.items() if n > 0), key=lambda i: -missing[i])
 
 
@@ -158,7 +158,7 @@ def _most_met(ep: Episode, movers: list[str], placed: list[PlacedObject], memo: 
     return placed
 
 
-class _Standing:
+class Standing:
     """What a move of the layout `ep.placed` may not worsen: its energy (the episode's, as its last step or
     repair reported it) and how many task objects are out of the robot's reach (computed when first asked)."""
 
@@ -185,7 +185,7 @@ class _Standing:
         self.__dict__.pop("setup", None)
 
 
-def _relocation(ep: Episode, now: _Standing, oid: str, make_way: bool = True):
+def _relocation(ep: Episode, now: Standing, oid: str, make_way: bool = True):
     """(new layout, steps, its energy) meeting more constraints than `now` with no more energy and no more
     task objects out of reach, by a free or (with `make_way`) a make-way move of `oid` (see the module); None
     if none is found."""
@@ -193,7 +193,7 @@ def _relocation(ep: Episode, now: _Standing, oid: str, make_way: bool = True):
     others = [p for p in ep.placed if p is not current]
     obj = ep.problem.plan.object(oid)
     cands, body = candidate_bodies(ep.scorer, obj)
-    gain = met(ep, oid, cands, others) - int(met(ep, oid, _here(current), others)[0])
+    gain = met(ep, oid, cands, others) - int(met(ep, oid, here(current), others)[0])
     better = np.flatnonzero(gain > 0)
     if not len(better):
         return None
@@ -249,7 +249,7 @@ def polish(ep: Episode, observer: StepObserver | None = None) -> list[str]:
     """Move objects of the finished episode `ep` whose constraints are broken, each once, most broken first,
     when a move meets more of them at no cost (no make-way move in a `crowded` room); the ids moved, in order."""
     moved: list[str] = []
-    now, make_way = _Standing(ep), not crowded(ep.problem.plan)
+    now, make_way = Standing(ep), not crowded(ep.problem.plan)
     for oid in broken(ep):
         move = _relocation(ep, now, oid, make_way)
         if move is None:

@@ -27,6 +27,7 @@ from models.placement.base import StepObserver
 from models.placement.candidates import PlacedObject
 from models.placement.greedy import NO_ROOM, Episode, candidate_bodies
 from models.placement.moves import Reach, displacements, legal_poses, move_step, scored
+from models.placement.habits import keep_companions
 from models.placement.polish import polish
 
 ROUNDS, NEAR, CHECKS = 3, 4, 40  # restore_access
@@ -53,9 +54,9 @@ def _best_move(ep: Episode, reach: Reach, placed: list[PlacedObject], oid: str, 
 
 
 def repair(ep: Episode, observer: StepObserver | None = None) -> list[str]:
-    """Every pass on the finished episode `ep` (room for the left-out, access, then the constraints'
-    polish, which never loses access): the ids moved or placed, in order."""
-    return make_room(ep, observer) + restore_access(ep, observer) + polish(ep, observer)
+    """Every pass on the finished episode `ep` (room for the left-out, access, the constraints' polish and
+    the companions' pass, which never lose access): the ids moved or placed, in order."""
+    return make_room(ep, observer) + restore_access(ep, observer) + polish(ep, observer) + keep_companions(ep, observer)
 
 
 def make_room(ep: Episode, observer: StepObserver | None = None) -> list[str]:

@@ -1,0 +1,67 @@
+"""The companions' pass: habits read from the training rooms' prior, moves only when the layout keeps more
+of them at no constraint, energy or reach cost; never a fixed object, nothing in a crowded room."""
+
+from models.datasets import load_dataset
+from models.energy.exact import layout_energy
+from models.energy.prior import relation_prior
+from models.metrics import scene_metrics
+from models.placement.greedy import Episode
+from models.placement import habits
+from models.placement.habits import companions, keep_companions, kept
+from models.placement.moves import Reach
+from models.placement.polish import polish
+
+PLANS = [r.plan for r in load_dataset("seen", "train")[:80]]
+
+
+def _finished(plan, fixed=None):
+    ep = Episode(plan, fixed)
+    ep.finish_greedily()
+    polish(ep)
+    return ep
+
+
+def _judged(plan, ep):
+    layout = ep.layout("greedy", 0, 0.0)
+    return scene_metrics(plan, layout), layout_energy(plan, layout.placements).total, len(Reach(ep).unreachable(ep.placed))
+
+
+def test_habits_come_from_the_training_rooms_prior():
+    prior = relation_prior()
+    assert prior.companion_gap("kitchen", "Chair", "DiningTable") == 0.1  # chairs stand at the table
+    assert prior.companion_gap("bedroom", "SideTable", "Bed") == 0.3
+    assert prior.companion_gap("kitchen", "Fridge", "Toilet") is None  # never seen together
+    assert prior.companion_gap("bedroom", "Bed", "Desk") is None  # seen together, not kept near
+
+
+def test_on_many_plans_a_move_keeps_more_habits_and_costs_nothing():
+    moved_plans = 0
+    for plan in PLANS:
+        ep = _finished(plan)
+        comp, types = companions(plan), {o.id: o.type for o in plan.objects}
+        before, energy, out = _judged(plan, ep)
+        habits = kept(comp, ep.placed, types)
+        steps = []
+        moved = keep_companions(ep, steps.append)
+        assert [s.object_id for s in steps] == moved, plan.id
+        if not moved:
+            continue
+        moved_plans += 1
+        after, new_energy, new_out = _judged(plan, ep)
+        assert kept(comp, ep.placed, types) > habits, plan.id
+        assert after.constraint_satisfaction >= before.constraint_satisfaction, plan.id
+        assert new_energy <= energy + 1e-9 and new_out <= out, plan.id
+        assert after.collisions == 0 and after.oob == 0 and after.cnt == before.cnt, plan.id
+    assert moved_plans >= 5  # the claim is tested on real moves, not on layouts left alone
+
+
+def test_fixed_objects_never_move_and_a_crowded_room_is_left_alone(monkeypatch):
+    plan = next(p for p in PLANS if keep_companions(_finished(p)))
+    fixed = {p.id: (p.x, p.z, p.rotation) for p in _finished(plan).placed}
+    assert keep_companions(_finished(plan, fixed)) == []
+    dense = _finished(load_dataset("dense")[0].plan)
+
+    def not_asked(plan):
+        raise AssertionError("a crowded room's habits were looked up")
+    monkeypatch.setattr(habits, "companions", not_asked)
+    assert keep_companions(dense) == []
