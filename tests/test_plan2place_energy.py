@@ -81,3 +81,46 @@ def test_per_step_shortcuts_compute_the_same_numbers():
                 soft = ep.scorer.soft_scores(opts.obj, opts.cands[opts.feasible], ep.placed)[0]
                 assert np.array_equal(opts.soft, soft)
             ep.apply(opts, int(rng.integers(len(opts.feasible))) if len(opts.feasible) else None)
+
+
+def test_blocked_cells_by_windows_equal_every_cell_against_every_box():
+    from models.energy import navigation as nav
+    rng = np.random.default_rng(3)
+    for width, depth in [(3.0, 4.2), (6.35, 5.1)]:
+        grid = nav.Grid(width, depth)
+        gx, gz = grid.mesh()
+        for _ in range(20):
+            lo = rng.uniform(-0.5, [width, depth], size=(int(rng.integers(0, 8)), 2))
+            boxes = np.hstack([lo, lo + rng.uniform(0.01, 2.0, size=lo.shape)])
+            b = boxes[:, None, None, :]  # every cell against every box
+            dx = np.maximum(0, np.maximum(b[..., 0] - gx, gx - b[..., 2]))
+            dz = np.maximum(0, np.maximum(b[..., 1] - gz, gz - b[..., 3]))
+            r = nav.ROBOT_RADIUS
+            want = (gx < r) | (gz < r) | (gx > width - r) | (gz > depth - r)
+            want |= (dx * dx + dz * dz <= r * r + 1e-12).any(axis=0)
+            assert np.array_equal(nav.blocked_by_boxes(grid, boxes), want)
+
+
+def test_the_repairs_moves_carry_an_energy_setup_equal_to_a_fresh_one():
+    """The polish and the companions' pass hand the set-up a move was scored with on to the next move."""
+    from models.placement import habits
+    from models.placement.polish import Standing, _relocation, broken
+    recs = load_dataset("seen", "train")
+    checked = 0
+    for plan in [r.plan for r in recs[:80]]:
+        ep = Episode(plan)
+        ep.finish_greedily()
+        now = Standing(ep)
+        comp, types = habits.companions(plan), {o.id: o.type for o in plan.objects}
+        moves = [_relocation(ep, now, oid) for oid in broken(ep)[:1]]
+        moves += [habits._move(ep, now, comp, types, p) for p in ep.placed[:3] if types[p.id] in comp]
+        for move in [m for m in moves if m is not None][:1]:
+            now.moved(move)
+            fresh = CandidateEnergy(ep.problem, ep.placed)
+            obj = ep.problem.plan.object(ep.placed[0].id)
+            cands = ep.scorer.grid(obj)[0]
+            want, got = fresh.without(obj.id).score(obj, cands), now.setup.without(obj.id).score(obj, cands)
+            for k, v in want.items():
+                np.testing.assert_allclose(got[k], v, atol=1e-9, err_msg=k)
+            checked += 1
+    assert checked >= 10

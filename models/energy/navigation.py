@@ -62,14 +62,13 @@ def blocked_by_polygons(grid: Grid, polygons: list[Polygon], radius: float = ROB
 
 
 def blocked_by_boxes(grid: Grid, boxes: np.ndarray, radius: float = ROBOT_RADIUS) -> np.ndarray:
-    """Vectorised: the same for axis-aligned boxes (M, 4), all at once."""
-    gx, gz = grid.mesh()
+    """The same for axis-aligned boxes (M, 4), each evaluated only on the cells near it (`_window`)."""
+    mesh = grid.mesh()
+    gx, gz = mesh
     blocked = (gx < radius) | (gz < radius) | (gx > grid.width - radius) | (gz > grid.depth - radius)
-    if len(boxes):
-        b = np.asarray(boxes)[:, None, None, :]
-        dx = np.maximum(0, np.maximum(b[..., 0] - gx, gx - b[..., 2]))
-        dz = np.maximum(0, np.maximum(b[..., 1] - gz, gz - b[..., 3]))
-        blocked |= (dx * dx + dz * dz <= radius * radius + 1e-12).any(axis=0)
+    for b in np.asarray(boxes, float).reshape(-1, 4):
+        rows, cols, wx, wz = _window(mesh, b, radius)
+        blocked[rows, cols] |= _near(b, wx, wz, radius)
     return blocked
 
 

@@ -22,7 +22,7 @@ from models.placement.base import StepObserver
 from models.placement.candidates import PlacedObject
 from models.placement.greedy import Episode, candidate_bodies
 from models.placement.moves import legal_poses, move_step
-from models.placement.polish import CHECKS, TOL, Standing, crowded, here, met
+from models.placement.polish import CHECKS, TOL, Move, Standing, crowded, here, met
 from models.values import ConstraintPlan
 
 Companions = dict[str, list[tuple[str, float]]]  # type -> [(companion type, largest habitual gap)]
@@ -68,8 +68,8 @@ def kept(comp: Companions, placed: list[PlacedObject], types: dict) -> int:
                         types)[0]) for p in placed)
 
 
-def _move(ep: Episode, now: Standing, comp: Companions, types: dict, p: PlacedObject):
-    """(new layout, step, its energy) of the best move of `p` (see the module), or None."""
+def _move(ep: Episode, now: Standing, comp: Companions, types: dict, p: PlacedObject) -> Move | None:
+    """The best move of `p` (see the module), or None."""
     others = [q for q in ep.placed if q is not p]
     obj, wanted = ep.problem.plan.object(p.id), comp[types[p.id]]
     cands, body = candidate_bodies(ep.scorer, obj)
@@ -82,15 +82,19 @@ def _move(ep: Episode, now: Standing, comp: Companions, types: dict, p: PlacedOb
     legal = legal[met(ep, p.id, cands[legal], others) >= met(ep, p.id, here(p), others)[0]]
     if not len(legal):
         return None
-    terms = now.setup.without(p.id).score(obj, cands[legal])
+    setup = now.setup.without(p.id)
+    terms, base = setup.score(obj, cands[legal]), None
     before = kept(comp, ep.placed, types)
     for k in np.lexsort((terms["total"], -gain[legal]))[:CHECKS]:
         if terms["total"][k] > now.energy + TOL:
             continue
         pose = ep.scorer.place(obj, *(float(v) for v in cands[legal[k]]))
-        placed = [*others, pose]
-        if kept(comp, placed, types) > before and len(now.reach.unreachable(placed)) <= now.out:
-            return placed, move_step(p.id, pose, cands, legal, int(k), terms), float(terms["total"][k])
+        if kept(comp, [*others, pose], types) <= before:
+            continue
+        base = now.reach.blocked(others) if base is None else base
+        if (out := now.out_of_reach_with(others, base, pose)) <= now.out:
+            return Move([*others, pose], [move_step(p.id, pose, cands, legal, int(k), terms)],
+                        float(terms["total"][k]), out, lambda: setup.after(pose))
     return None
 
 
@@ -106,9 +110,8 @@ def keep_companions(ep: Episode, observer: StepObserver | None = None) -> list[s
         move = _move(ep, now, comp, types, p)
         if move is None:
             continue
-        placed, step, energy = move
-        now.moved(placed, energy)
+        now.moved(move)
         moved.append(oid)
         if observer is not None:
-            observer(step)
+            observer(move.steps[0])
     return moved

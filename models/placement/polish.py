@@ -17,14 +17,17 @@ moves only: there make-way moves cost several ms per object and meet little more
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from dataclasses import dataclass
 from functools import cached_property
 
 import numpy as np
 
 from models.constraints.evaluate import Poses, placement, relation, wall_clearance
+from models.energy import navigation as nav
 from models.energy.vectorised import CandidateEnergy
 from models.geometry import SweptBoxes
-from models.placement.base import StepObserver
+from models.placement.base import PlacementStep, StepObserver
 from models.placement.candidates import PlacedObject
 from models.placement.greedy import Episode, candidate_bodies, hard_filter
 from models.placement.moves import Reach, displacements, legal_poses, move_step
@@ -128,9 +131,9 @@ def _legal_among(ep: Episode, oid: str, placed: list[PlacedObject], memo: dict) 
 
 
 def _place_again(ep: Episode, movers: list[str], energy: CandidateEnergy, placed: list[PlacedObject], memo: dict):
-    """(`placed` with `movers` placed again in order, their steps): each at its legal pose meeting the most
-    constraints, then of lowest energy (the later ones pending; `energy`: the set-up of `placed` with
-    `movers[1:]` pending); None if one has no legal pose."""
+    """(`placed` with `movers` placed again in order, their steps, the energy set-up of the result): each at
+    its legal pose meeting the most constraints, then of lowest energy (the later ones pending; `energy`: the
+    set-up of `placed` with `movers[1:]` pending); None if one has no legal pose."""
     placed, steps = list(placed), []
     for k, oid in enumerate(movers):
         obj = ep.problem.plan.object(oid)
@@ -142,7 +145,7 @@ def _place_again(ep: Episode, movers: list[str], energy: CandidateEnergy, placed
         placed.append(ep.scorer.place(obj, *(float(v) for v in cands[legal[best]])))
         steps.append(move_step(oid, placed[-1], cands, legal, best, terms))
         energy = energy.after(placed[-1], pending=movers[k + 2:])
-    return placed, steps
+    return placed, steps, energy
 
 
 def _most_met(ep: Episode, movers: list[str], placed: list[PlacedObject], memo: dict) -> list[PlacedObject] | None:
@@ -158,12 +161,25 @@ def _most_met(ep: Episode, movers: list[str], placed: list[PlacedObject], memo: 
     return placed
 
 
+@dataclass
+class Move:
+    """A move found for the layout: the new layout, its steps, its energy, how many task objects it leaves out
+    of reach, and how to make its energy set-up (incrementally, from the one the move was scored with)."""
+
+    placed: list[PlacedObject]
+    steps: list[PlacementStep]
+    energy: float
+    out: int
+    setup: Callable[[], CandidateEnergy]
+
+
 class Standing:
     """What a move of the layout `ep.placed` may not worsen: its energy (the episode's, as its last step or
     repair reported it) and how many task objects are out of the robot's reach (computed when first asked)."""
 
     def __init__(self, ep: Episode):
         self.ep, self.reach, self.energy = ep, Reach(ep), ep.energy
+        self._next_setup: Callable[[], CandidateEnergy] | None = None
 
     @cached_property
     def out(self) -> int:
@@ -171,24 +187,29 @@ class Standing:
 
     @cached_property
     def setup(self) -> CandidateEnergy:
-        """The energy set-up of the layout (the episode's last one, if no repair has moved anything since)."""
+        """The energy set-up of the layout (the last move's, or the episode's last one if no repair has moved
+        anything since)."""
+        if self._next_setup is not None:
+            return self._next_setup()
         last = self.ep.setup
         if [_key(p) for p in last.placed] == [_key(p) for p in self.ep.placed]:
             return last
         return CandidateEnergy(self.ep.problem, self.ep.placed)
 
-    def moved(self, placed: list[PlacedObject], energy: float) -> None:
-        self.ep.placed, self.ep.energy = placed, energy
-        self.ep.terms = {**self.ep.terms, "total": energy}
-        self.energy = energy
-        self.__dict__.pop("out", None)
+    def out_of_reach_with(self, others: list[PlacedObject], base: np.ndarray | None, pose: PlacedObject) -> int:
+        """Task objects out of reach in `others` + `pose`; `base`: the blocked grid of `others`."""
+        return len(self.reach.unreachable([*others, pose], nav.blocked_with(self.reach.mesh, base, pose.body)))
+
+    def moved(self, move: Move) -> None:
+        self.ep.placed, self.ep.energy = move.placed, move.energy
+        self.ep.terms = {**self.ep.terms, "total": move.energy}
+        self.energy, self.out, self._next_setup = move.energy, move.out, move.setup
         self.__dict__.pop("setup", None)
 
 
-def _relocation(ep: Episode, now: Standing, oid: str, make_way: bool = True):
-    """(new layout, steps, its energy) meeting more constraints than `now` with no more energy and no more
-    task objects out of reach, by a free or (with `make_way`) a make-way move of `oid` (see the module); None
-    if none is found."""
+def _relocation(ep: Episode, now: Standing, oid: str, make_way: bool = True) -> Move | None:
+    """A move meeting more constraints than `now` with no more energy and no more task objects out of reach,
+    by a free or (with `make_way`) a make-way move of `oid` (see the module); None if none is found."""
     current = next(p for p in ep.placed if p.id == oid)
     others = [p for p in ep.placed if p is not current]
     obj = ep.problem.plan.object(oid)
@@ -209,13 +230,15 @@ def _relocation(ep: Episode, now: Standing, oid: str, make_way: bool = True):
         return made[0]
 
     if len(legal):
-        terms = setup().score(obj, cands[legal])
+        terms, base = setup().score(obj, cands[legal]), None
         for k in np.lexsort((terms["total"], -gain[legal]))[:CHECKS]:
             if terms["total"][k] > now.energy + TOL:
                 continue
             pose = ep.scorer.place(obj, *(float(v) for v in cands[legal[k]]))
-            if len(now.reach.unreachable([*others, pose])) <= now.out:
-                return [*others, pose], [move_step(oid, pose, cands, legal, int(k), terms)], float(terms["total"][k])
+            base = now.reach.blocked(others) if base is None else base
+            if (out := now.out_of_reach_with(others, base, pose)) <= now.out:
+                return Move([*others, pose], [move_step(oid, pose, cands, legal, int(k), terms)],
+                            float(terms["total"][k]), out, lambda: made[0].after(pose))
     if not make_way:
         return None
     for i, blockers in displacements(ep, obj, cands, swept, others, rank=gain, energy=setup, tries=MAKE_WAY_POSES):
@@ -235,13 +258,14 @@ def _relocation(ep: Episode, now: Standing, oid: str, make_way: bool = True):
         again = _place_again(ep, blockers, base.after(pose, pending=blockers[1:]), [*placed, pose], memo)
         if again is None:
             continue
-        placed, steps = again
-        if met_among(ep, placed, changed) <= was or len(now.reach.unreachable(placed)) > now.out:
+        placed, steps, final_setup = again
+        if met_among(ep, placed, changed) <= was or (out := len(now.reach.unreachable(placed))) > now.out:
             continue
         new_energy = steps[-1].terms["total"]  # the last one placed again: nothing pending
         if new_energy <= now.energy + TOL:
             final = {t: np.array([v]) for t, v in steps[-1].terms.items()}  # its step shows the final layout's
-            return placed, [move_step(oid, pose, cands, np.array([i]), 0, final), *steps], new_energy
+            return Move(placed, [move_step(oid, pose, cands, np.array([i]), 0, final), *steps], new_energy, out,
+                        lambda: final_setup)
     return None
 
 
@@ -254,9 +278,8 @@ def polish(ep: Episode, observer: StepObserver | None = None) -> list[str]:
         move = _relocation(ep, now, oid, make_way)
         if move is None:
             continue
-        placed, steps, energy = move
-        now.moved(placed, energy)
-        moved += [s.object_id for s in steps]
-        for step in steps if observer is not None else ():
+        now.moved(move)
+        moved += [s.object_id for s in move.steps]
+        for step in move.steps if observer is not None else ():
             observer(step)
     return moved
