@@ -7,7 +7,7 @@ from models.energy.prior import relation_prior
 from models.metrics import scene_metrics
 from models.placement.greedy import Episode
 from models.placement import habits
-from models.placement.habits import companions, keep_companions, kept
+from models.placement.habits import Habits, keep_companions
 from models.placement.moves import Reach
 from models.placement.polish import polish
 
@@ -38,9 +38,8 @@ def test_on_many_plans_a_move_keeps_more_habits_and_costs_nothing():
     moved_plans = 0
     for plan in PLANS:
         ep = _finished(plan)
-        comp, types = companions(plan), {o.id: o.type for o in plan.objects}
         before, energy, out = _judged(plan, ep)
-        habits = kept(comp, ep.placed, types)
+        kept_before = Habits(plan, ep.placed).kept()
         steps = []
         moved = keep_companions(ep, steps.append)
         assert [s.object_id for s in steps] == moved, plan.id
@@ -48,7 +47,7 @@ def test_on_many_plans_a_move_keeps_more_habits_and_costs_nothing():
             continue
         moved_plans += 1
         after, new_energy, new_out = _judged(plan, ep)
-        assert kept(comp, ep.placed, types) > habits, plan.id
+        assert Habits(plan, ep.placed).kept() > kept_before, plan.id
         assert after.constraint_satisfaction >= before.constraint_satisfaction, plan.id
         assert new_energy <= energy + 1e-9 and new_out <= out, plan.id
         assert after.collisions == 0 and after.oob == 0 and after.cnt == before.cnt, plan.id

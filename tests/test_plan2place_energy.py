@@ -110,10 +110,9 @@ def test_the_repairs_moves_carry_an_energy_setup_equal_to_a_fresh_one():
     for plan in [r.plan for r in recs[:80]]:
         ep = Episode(plan)
         ep.finish_greedily()
-        now = Standing(ep)
-        comp, types = habits.companions(plan), {o.id: o.type for o in plan.objects}
+        now, kept = Standing(ep), habits.Habits(plan, ep.placed)
         moves = [_relocation(ep, now, oid) for oid in broken(ep)[:1]]
-        moves += [habits._move(ep, now, comp, types, p) for p in ep.placed[:3] if types[p.id] in comp]
+        moves += [habits._move(ep, now, kept, p, kept.kept()) for p in ep.placed[:3] if kept.types[p.id] in kept.comp]
         for move in [m for m in moves if m is not None][:1]:
             now.moved(move)
             fresh = CandidateEnergy(ep.problem, ep.placed)

@@ -51,30 +51,41 @@ def _gaps(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return np.hypot(dx, dz)
 
 
-def near(feet: np.ndarray, wanted: list[tuple[str, float]], others: list[PlacedObject], types: dict) -> np.ndarray:
-    """For each footprint of `feet` (N, 4): how many of the `wanted` companions have one of theirs among
-    `others` within the habitual gap."""
-    count = np.zeros(len(feet), int)
-    for b, gap in wanted:
-        theirs = [p for p in others if types[p.id] == b]
-        if theirs:
-            count += (_gaps(feet, np.stack([_footprint(p) for p in theirs])).min(axis=1) <= gap + 1e-9)
-    return count
+class Habits:
+    """The plan's companions and the footprints of a layout's objects (id -> box), to count habits kept."""
+
+    def __init__(self, plan: ConstraintPlan, placed: list[PlacedObject]):
+        self.comp = companions(plan)
+        self.types = {o.id: o.type for o in plan.objects}
+        self.feet = {p.id: _footprint(p) for p in placed}
+
+    def near(self, oid: str, feet: np.ndarray, layout: dict[str, np.ndarray] | None = None) -> np.ndarray:
+        """For each footprint of `feet` (N, 4) that `oid` could take: how many of its companions have one of
+        theirs within the habitual gap among the other objects of `layout` (default: this one)."""
+        layout = self.feet if layout is None else layout
+        count = np.zeros(len(feet), int)
+        for b, gap in self.comp.get(self.types[oid], ()):
+            theirs = [box for q, box in layout.items() if self.types[q] == b and q != oid]
+            if theirs:
+                count += _gaps(feet, np.stack(theirs)).min(axis=1) <= gap + 1e-9
+        return count
+
+    def kept(self, layout: dict[str, np.ndarray] | None = None) -> int:
+        """Habits kept in `layout` (default: this one): (object, companion type) pairs with one near enough."""
+        layout = self.feet if layout is None else layout
+        return sum(int(self.near(q, box[None], layout)[0]) for q, box in layout.items() if self.types[q] in self.comp)
 
 
-def kept(comp: Companions, placed: list[PlacedObject], types: dict) -> int:
-    """Habits kept in the layout `placed`: (object, companion type) pairs with one near enough."""
-    return sum(int(near(_footprint(p)[None], comp.get(types[p.id], []), [q for q in placed if q is not p],
-                        types)[0]) for p in placed)
-
-
-def _move(ep: Episode, now: Standing, comp: Companions, types: dict, p: PlacedObject) -> Move | None:
-    """The best move of `p` (see the module), or None."""
+def _move(ep: Episode, now: Standing, habits: Habits, p: PlacedObject, before: int) -> Move | None:
+    """The best move of `p` in the layout `ep.placed`, which keeps `before` habits (see the module), or None."""
+    wanted, current = habits.comp[habits.types[p.id]], int(habits.near(p.id, habits.feet[p.id][None])[0])
+    if current == len(wanted):
+        return None
     others = [q for q in ep.placed if q is not p]
-    obj, wanted = ep.problem.plan.object(p.id), comp[types[p.id]]
+    obj = ep.problem.plan.object(p.id)
     cands, body = candidate_bodies(ep.scorer, obj)
-    gain = near(boxes(cands[:, 0], cands[:, 1], obj.size.x, obj.size.z, cands[:, 2]), wanted, others, types)
-    better = np.flatnonzero(gain > near(_footprint(p)[None], wanted, others, types)[0])
+    gain = habits.near(p.id, boxes(cands[:, 0], cands[:, 1], obj.size.x, obj.size.z, cands[:, 2]))
+    better = np.flatnonzero(gain > current)
     if not len(better):
         return None
     cands, body, gain = cands[better], body[better], gain[better]
@@ -84,12 +95,11 @@ def _move(ep: Episode, now: Standing, comp: Companions, types: dict, p: PlacedOb
         return None
     setup = now.setup.without(p.id)
     terms, base = setup.score(obj, cands[legal]), None
-    before = kept(comp, ep.placed, types)
     for k in np.lexsort((terms["total"], -gain[legal]))[:CHECKS]:
         if terms["total"][k] > now.energy + TOL:
             continue
         pose = ep.scorer.place(obj, *(float(v) for v in cands[legal[k]]))
-        if kept(comp, [*others, pose], types) <= before:
+        if habits.kept({**habits.feet, p.id: _footprint(pose)}) <= before:
             continue
         base = now.reach.blocked(others) if base is None else base
         if (out := now.out_of_reach_with(others, base, pose)) <= now.out:
@@ -101,16 +111,17 @@ def _move(ep: Episode, now: Standing, comp: Companions, types: dict, p: PlacedOb
 def keep_companions(ep: Episode, observer: StepObserver | None = None) -> list[str]:
     """Move the movable objects of the finished episode `ep` whose companions are too far, each once, when
     that keeps more habits at no cost (none in a `crowded` room; see the module); the ids moved, in order."""
-    comp = {} if crowded(ep.problem.plan) else companions(ep.problem.plan)
-    types = {o.id: o.type for o in ep.problem.plan.objects}
-    moved: list[str] = []
-    now = Standing(ep)
-    for oid in [p.id for p in ep.placed if types[p.id] in comp and p.id not in ep.problem.fixed]:
-        p = next(q for q in ep.placed if q.id == oid)
-        move = _move(ep, now, comp, types, p)
+    if crowded(ep.problem.plan):
+        return []
+    habits, moved, now = Habits(ep.problem.plan, ep.placed), [], Standing(ep)
+    before = habits.kept()
+    for oid in [p.id for p in ep.placed if habits.types[p.id] in habits.comp and p.id not in ep.problem.fixed]:
+        move = _move(ep, now, habits, next(q for q in ep.placed if q.id == oid), before)
         if move is None:
             continue
         now.moved(move)
+        habits.feet[oid] = _footprint(move.placed[-1])
+        before = habits.kept()
         moved.append(oid)
         if observer is not None:
             observer(move.steps[0])
