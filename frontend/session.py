@@ -446,13 +446,8 @@ class StudioSession:
             self.view.heat_map(step)
         scene = self.displayed()
         obj = next((o for o in scene.objects if o.id == step.object_id), None)
-        where = "no valid position (unplaced)" if obj is None else \
-            f"x {obj.x:.2f} m, z {obj.z:.2f} m, facing {obj.rotation:.0f}°"
         room = self.apartment.where(step) if self.apartment.current is not None else ""
-        again = any(s.object_id == step.object_id for s in steps[:self.state.shown - 1])
-        doing = "repair: placing" if again else "placing"
-        self.step_md.content = (f"**Step {self.state.shown} / {len(steps)}**: {room}{doing} `{step.object_id}` "
-                                f"at {where}")
+        self.step_md.content = step_caption(steps, self.state.shown, obj, room)
         if obj is None:
             return
         frames = max(2, min(8, int(20 / float(self.speed.value))))  # fewer frames when playing fast
@@ -899,6 +894,18 @@ class StudioSession:
         else:
             self.client.send_file_download(f"{stem}.glb", glb_of(value), save_immediately=True)
         self.say(f"Downloaded `{stem}` ({'house JSON' if kind == 'house' else 'GLB'}).")
+
+
+def step_caption(steps: list[PlacementStep], shown: int, obj, room: str = "") -> str:
+    """The Placement tab's line for step number `shown` (1-based) of `steps`: the object, where it went (`obj`:
+    the object as displayed, None if unplaced) and, for a repair's move, its reason."""
+    step = steps[shown - 1]
+    where = "no valid position (unplaced)" if obj is None else \
+        f"x {obj.x:.2f} m, z {obj.z:.2f} m, facing {obj.rotation:.0f}°"
+    again = any(s.object_id == step.object_id for s in steps[:shown - 1])
+    doing = "repair: placing" if again else "placing"
+    why = f" ({step.why})" if step.why else ""
+    return f"**Step {shown} / {len(steps)}**: {room}{doing} `{step.object_id}` at {where}{why}"
 
 
 def _slug(text: str) -> str:

@@ -23,7 +23,8 @@ def _finished(plan, fixed=None):
 
 def _judged(plan, ep):
     layout = ep.layout("greedy", 0, 0.0)
-    return scene_metrics(plan, layout), layout_energy(plan, layout.placements).total, len(Reach(ep).unreachable(ep.placed))
+    out_of_reach = len(Reach(ep).unreachable(ep.placed))
+    return scene_metrics(plan, layout), layout_energy(plan, layout.placements).total, out_of_reach
 
 
 def test_habits_come_from_the_training_rooms_prior():
@@ -43,6 +44,9 @@ def test_on_many_plans_a_move_keeps_more_habits_and_costs_nothing():
         steps = []
         moved = keep_companions(ep, steps.append)
         assert [s.object_id for s in steps] == moved, plan.id
+        for s in steps:  # the reason the studio shows names a companion type of the plan now near
+            named = s.why.removeprefix("standing by its ").removesuffix(", as in the iTHOR rooms").split(", ")
+            assert named[0] and set(named) <= {o.type for o in plan.objects}, s.why
         if not moved:
             continue
         moved_plans += 1

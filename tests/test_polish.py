@@ -42,6 +42,8 @@ def test_a_move_meets_more_constraints_at_no_energy_or_reach_cost(pid, alone):
     last = {s.object_id: (s.x, s.z, s.rotation) for s in steps}
     assert all((p.x, p.z, p.rotation) == last[p.id] for p in ep.placed if p.id in last)
     assert all("total" in s.terms for s in steps)
+    assert steps[0].why == "meeting more of its constraints"
+    assert all(s.why == f"making way for {moved[0]}" for s in steps[1:])
 
 
 def test_on_many_plans_the_polish_never_costs_energy_reach_or_constraints():

@@ -32,6 +32,7 @@ def test_unreachable_task_objects_are_made_reachable_and_each_move_is_a_step():
     last = {s.object_id: (s.x, s.z, s.rotation) for s in steps}
     assert all((p.x, p.z, p.rotation) == last[p.id] for p in ep.placed if p.id in last)
     assert all(s.scores.max() == 1.0 and (s.scores == 1.0).sum() == 1 for s in steps)
+    assert all(s.why == "clearing the robot's way to the task objects" for s in steps)  # the studio shows it
 
 
 def test_a_reachable_layout_and_fixed_objects_are_left_as_they_are():
@@ -65,6 +66,9 @@ def test_an_object_left_out_is_placed_after_the_objects_in_its_way_are_placed_ag
     assert len(left_out) == 1 and done[0] in left_out and not ep.failed and [s.object_id for s in steps] == done
     assert after.cnt == 1.0 > before.cnt and after.collisions == 0 and after.oob == 0
     assert all("total" in s.terms for s in steps)
+    movers = [s.object_id for s in steps[1:]]
+    assert steps[0].why == f"left out at first: room made by moving {', '.join(movers)}"
+    assert all(s.why == f"making way for {steps[0].object_id}" for s in steps[1:])
     # the objects it moved may not be fixed ones: with them fixed, nothing moves and the object stays out
     fixed = {p.id: (p.x, p.z, p.rotation) for p in _finished(plan).placed}
     again = _finished(plan, fixed)

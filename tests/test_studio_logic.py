@@ -1,5 +1,7 @@
 """The studio's logic without a browser: camera framing, label stacking, undo history, scene checks."""
 
+import re
+
 import pytest
 
 from frontend import camera
@@ -95,3 +97,24 @@ def test_parser_doubts_are_shown():
                       relations=[], uncertain=True, messages=["Two tasks were found; only the first is used."])
     assert "Two tasks" in _parser_note(graph)
     assert _parser_note(graph.model_copy(update={"uncertain": False})) == ""
+
+
+def test_a_repair_step_says_why_the_object_moved():
+    from frontend.session import step_caption
+    from models.datasets import load_dataset
+    from models.placement.greedy import GreedySolver
+
+    reasons = re.compile(r"\((meeting more of its constraints|making way for \S+|standing by its .+, as in the "
+                         r"iTHOR rooms|clearing the robot's way to the task objects|left out at first: .+)\)$")
+    seen = set()
+    for plan in [r.plan for r in load_dataset("seen", "train")[:12]]:
+        steps = []
+        layout = GreedySolver().solve(plan, observer=steps.append)
+        placed = {p.id: p for p in layout.placements}
+        captions = [step_caption(steps, k, placed.get(s.object_id)) for k, s in enumerate(steps, 1)]
+        first = len(plan.objects)
+        assert all("repair" not in c for c in captions[:first]) and not any(s.why for s in steps[:first]), plan.id
+        for c in captions[first:]:
+            assert "repair: placing" in c and reasons.search(c), c
+            seen.add(reasons.search(c).group(1).split(" ")[0])
+    assert {"meeting", "standing"} <= seen  # the polish's and the companions' pass's moves both shown

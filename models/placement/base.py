@@ -22,6 +22,7 @@ class PlacementStep:
     candidates: np.ndarray  # (N, 3): x, z, rotation of every candidate considered
     scores: np.ndarray  # (N,) higher is better; -inf for candidates that fail a hard filter
     terms: dict[str, float]  # energy terms of the chosen pose
+    why: str = ""  # a repair's reason for moving an object placed before (empty: the object's first placing)
 
 
 StepObserver = Callable[[PlacementStep], None]

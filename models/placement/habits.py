@@ -70,6 +70,11 @@ class Habits:
                 count += _gaps(feet, np.stack(theirs)).min(axis=1) <= gap + 1e-9
         return count
 
+    def beside(self, oid: str, box: np.ndarray) -> list[str]:
+        """The companion types of `oid` that have one of theirs near the footprint `box` (4,)."""
+        return [b for b, gap in self.comp.get(self.types[oid], ())
+                if self.near(oid, box[None], {q: f for q, f in self.feet.items() if self.types[q] == b})[0]]
+
     def kept(self, layout: dict[str, np.ndarray] | None = None) -> int:
         """Habits kept in `layout` (default: this one): (object, companion type) pairs with one near enough."""
         layout = self.feet if layout is None else layout
@@ -103,7 +108,8 @@ def _move(ep: Episode, now: Standing, habits: Habits, p: PlacedObject, before: i
             continue
         base = now.reach.blocked(others) if base is None else base
         if (out := now.out_of_reach_with(others, base, pose)) <= now.out:
-            return Move([*others, pose], [move_step(p.id, pose, cands, legal, int(k), terms)],
+            why = f"standing by its {', '.join(habits.beside(p.id, _footprint(pose)))}, as in the iTHOR rooms"
+            return Move([*others, pose], [move_step(p.id, pose, cands, legal, int(k), terms, why)],
                         float(terms["total"][k]), out, lambda: setup.after(pose))
     return None
 

@@ -66,12 +66,12 @@ def scored(ep: Episode, obj, placed: list[PlacedObject], pending=(), relax: bool
 
 
 def move_step(obj_id: str, pose: PlacedObject, cands: np.ndarray, legal: np.ndarray, k: int,
-              terms: dict) -> PlacementStep:
-    """The step a move shows: the chosen pose `legal[k]` as the only choice among the legal ones."""
+              terms: dict, why: str) -> PlacementStep:
+    """The step a move shows: the chosen pose `legal[k]` as the only choice among the legal ones, and `why`."""
     scores = np.full(len(cands), -np.inf)
     scores[legal], scores[legal[k]] = 0.0, 1.0
     return PlacementStep(obj_id, pose.x, pose.z, pose.rotation, cands, scores,
-                         {t: float(v[k]) for t, v in terms.items()})
+                         {t: float(v[k]) for t, v in terms.items()}, why)
 
 
 def displacements(ep: Episode, obj, cands: np.ndarray, swept: SweptBoxes, placed: list[PlacedObject],

@@ -37,6 +37,7 @@ CHECKS = 20
 MAKE_WAY_POSES = 3  # poses tried per make-way move
 CROWDED = 0.5  # share of the floor the plan's objects cover above which no make-way move is tried
 TOL = 1e-9  # energy: "does not rise"
+MORE_MET = "meeting more of its constraints"  # a moved object's step reason
 
 
 def met(ep: Episode, oid: str, cands: np.ndarray, others: list[PlacedObject]) -> np.ndarray:
@@ -130,10 +131,11 @@ def _legal_among(ep: Episode, oid: str, placed: list[PlacedObject], memo: dict) 
     return memo[key]
 
 
-def _place_again(ep: Episode, movers: list[str], energy: CandidateEnergy, placed: list[PlacedObject], memo: dict):
+def _place_again(ep: Episode, movers: list[str], energy: CandidateEnergy, placed: list[PlacedObject], memo: dict,
+                 why: str):
     """(`placed` with `movers` placed again in order, their steps, the energy set-up of the result): each at
     its legal pose meeting the most constraints, then of lowest energy (the later ones pending; `energy`: the
-    set-up of `placed` with `movers[1:]` pending); None if one has no legal pose."""
+    set-up of `placed` with `movers[1:]` pending; `why`: the steps' reason); None if one has no legal pose."""
     placed, steps = list(placed), []
     for k, oid in enumerate(movers):
         obj = ep.problem.plan.object(oid)
@@ -143,7 +145,7 @@ def _place_again(ep: Episode, movers: list[str], energy: CandidateEnergy, placed
         terms = energy.score(obj, cands[legal])
         best = int(np.lexsort((terms["total"], -met(ep, oid, cands[legal], placed)))[0])
         placed.append(ep.scorer.place(obj, *(float(v) for v in cands[legal[best]])))
-        steps.append(move_step(oid, placed[-1], cands, legal, best, terms))
+        steps.append(move_step(oid, placed[-1], cands, legal, best, terms, why))
         energy = energy.after(placed[-1], pending=movers[k + 2:])
     return placed, steps, energy
 
@@ -237,7 +239,7 @@ def _relocation(ep: Episode, now: Standing, oid: str, make_way: bool = True) -> 
             pose = ep.scorer.place(obj, *(float(v) for v in cands[legal[k]]))
             base = now.reach.blocked(others) if base is None else base
             if (out := now.out_of_reach_with(others, base, pose)) <= now.out:
-                return Move([*others, pose], [move_step(oid, pose, cands, legal, int(k), terms)],
+                return Move([*others, pose], [move_step(oid, pose, cands, legal, int(k), terms, MORE_MET)],
                             float(terms["total"][k]), out, lambda: made[0].after(pose))
     if not make_way:
         return None
@@ -255,7 +257,8 @@ def _relocation(ep: Episode, now: Standing, oid: str, make_way: bool = True) -> 
         base = setup()
         for b in blockers:
             base = base.without(b)
-        again = _place_again(ep, blockers, base.after(pose, pending=blockers[1:]), [*placed, pose], memo)
+        again = _place_again(ep, blockers, base.after(pose, pending=blockers[1:]), [*placed, pose], memo,
+                             f"making way for {oid}")
         if again is None:
             continue
         placed, steps, final_setup = again
@@ -264,8 +267,8 @@ def _relocation(ep: Episode, now: Standing, oid: str, make_way: bool = True) -> 
         new_energy = steps[-1].terms["total"]  # the last one placed again: nothing pending
         if new_energy <= now.energy + TOL:
             final = {t: np.array([v]) for t, v in steps[-1].terms.items()}  # its step shows the final layout's
-            return Move(placed, [move_step(oid, pose, cands, np.array([i]), 0, final), *steps], new_energy, out,
-                        lambda: final_setup)
+            first = move_step(oid, pose, cands, np.array([i]), 0, final, MORE_MET)
+            return Move(placed, [first, *steps], new_energy, out, lambda: final_setup)
     return None
 
 

@@ -47,7 +47,8 @@ def _best_move(ep: Episode, reach: Reach, placed: list[PlacedObject], oid: str, 
         pose = ep.scorer.place(obj, *(float(v) for v in cands[feasible[k]]))
         left = len(reach.unreachable([*others, pose], nav.blocked_with(reach.mesh, base, pose.body)))
         if left < out_of_reach and (best is None or left < best[0]):
-            best = (left, float(terms["total"][k]), pose, move_step(oid, pose, cands, feasible, int(k), terms))
+            step = move_step(oid, pose, cands, feasible, int(k), terms, "clearing the robot's way to the task objects")
+            best = (left, float(terms["total"][k]), pose, step)
             if left == 0:
                 break
     return best
@@ -81,12 +82,13 @@ def make_room(ep: Episode, observer: StepObserver | None = None) -> list[str]:
                     break
                 best = int(np.argmin(terms["total"]))
                 placed.append(ep.scorer.place(m_obj, *(float(v) for v in m_cands[legal[best]])))
-                steps.append(move_step(mover, placed[-1], m_cands, legal, best, terms))
+                steps.append(move_step(mover, placed[-1], m_cands, legal, best, terms, f"making way for {obj.id}"))
             else:
                 # the left-out object's step shows the energy of the repaired layout
                 terms = CandidateEnergy(ep.problem, [p for p in placed if p is not pose], pending=()).score(
                     obj, cands[[i]])
-                steps[0] = move_step(obj.id, pose, cands, np.array([i]), 0, terms)
+                steps[0] = move_step(obj.id, pose, cands, np.array([i]), 0, terms,
+                                     f"left out at first: room made by moving {', '.join(blockers)}")
                 ep.placed = placed
                 del ep.failed[obj.id]
                 ep.energy, ep.terms = steps[0].terms["total"], steps[0].terms
