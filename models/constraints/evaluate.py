@@ -59,7 +59,11 @@ class Poses:
 
 def box_gap(a: Poses, b: Poses) -> np.ndarray:
     """Elementwise shortest distance between the boxes of A and B (broadcast)."""
-    ba, bb = a.boxes(), b.boxes()
+    return gap_of_boxes(a.boxes(), b.boxes())
+
+
+def gap_of_boxes(ba: np.ndarray, bb: np.ndarray) -> np.ndarray:
+    """Elementwise shortest distance between boxes [xmin, zmin, xmax, zmax] (..., 4) (broadcast)."""
     dx = np.maximum(0, np.maximum(ba[..., 0] - bb[..., 2], bb[..., 0] - ba[..., 2]))
     dz = np.maximum(0, np.maximum(ba[..., 1] - bb[..., 3], bb[..., 1] - ba[..., 3]))
     return np.hypot(dx, dz)

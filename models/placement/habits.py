@@ -16,13 +16,14 @@ from __future__ import annotations
 
 import numpy as np
 
+from models.constraints.evaluate import gap_of_boxes
 from models.energy.prior import relation_prior
 from models.geometry import SweptBoxes, boxes
 from models.placement.base import StepObserver
 from models.placement.candidates import PlacedObject
 from models.placement.greedy import Episode, candidate_bodies
-from models.placement.moves import legal_poses, move_step
-from models.placement.polish import CHECKS, TOL, Move, Standing, crowded, here, met
+from models.placement.moves import legal_poses
+from models.placement.polish import Move, Standing, crowded, free_move, here, met
 from models.values import ConstraintPlan
 
 Companions = dict[str, list[tuple[str, float]]]  # type -> [(companion type, largest habitual gap)]
@@ -44,13 +45,6 @@ def _footprint(p: PlacedObject) -> np.ndarray:
     return boxes(p.x, p.z, p.width, p.depth, p.rotation)
 
 
-def _gaps(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """(N, M) gaps between the boxes a (N, 4) and b (M, 4)."""
-    dx = np.maximum(0.0, np.maximum(a[:, None, 0] - b[None, :, 2], b[None, :, 0] - a[:, None, 2]))
-    dz = np.maximum(0.0, np.maximum(a[:, None, 1] - b[None, :, 3], b[None, :, 1] - a[:, None, 3]))
-    return np.hypot(dx, dz)
-
-
 class Habits:
     """The plan's companions and the footprints of a layout's objects (id -> box), to count habits kept."""
 
@@ -59,21 +53,27 @@ class Habits:
         self.types = {o.id: o.type for o in plan.objects}
         self.feet = {p.id: _footprint(p) for p in placed}
 
+    def _each(self, oid: str, feet: np.ndarray, layout: dict[str, np.ndarray]):
+        """(companion type, for each footprint of `feet` (N, 4) whether one of that type among the other
+        objects of `layout` is within the habitual gap), for each companion of `oid`."""
+        for b, gap in self.comp.get(self.types[oid], ()):
+            theirs = [box for q, box in layout.items() if self.types[q] == b and q != oid]
+            if not theirs:
+                yield b, np.zeros(len(feet), bool)
+            else:
+                yield b, gap_of_boxes(feet[:, None], np.stack(theirs)[None]).min(axis=1) <= gap + 1e-9
+
     def near(self, oid: str, feet: np.ndarray, layout: dict[str, np.ndarray] | None = None) -> np.ndarray:
         """For each footprint of `feet` (N, 4) that `oid` could take: how many of its companions have one of
         theirs within the habitual gap among the other objects of `layout` (default: this one)."""
-        layout = self.feet if layout is None else layout
         count = np.zeros(len(feet), int)
-        for b, gap in self.comp.get(self.types[oid], ()):
-            theirs = [box for q, box in layout.items() if self.types[q] == b and q != oid]
-            if theirs:
-                count += _gaps(feet, np.stack(theirs)).min(axis=1) <= gap + 1e-9
+        for _, ok in self._each(oid, feet, self.feet if layout is None else layout):
+            count += ok
         return count
 
     def beside(self, oid: str, box: np.ndarray) -> list[str]:
         """The companion types of `oid` that have one of theirs near the footprint `box` (4,)."""
-        return [b for b, gap in self.comp.get(self.types[oid], ())
-                if self.near(oid, box[None], {q: f for q, f in self.feet.items() if self.types[q] == b})[0]]
+        return [b for b, ok in self._each(oid, box[None], self.feet) if ok[0]]
 
     def kept(self, layout: dict[str, np.ndarray] | None = None) -> int:
         """Habits kept in `layout` (default: this one): (object, companion type) pairs with one near enough."""
@@ -98,20 +98,10 @@ def _move(ep: Episode, now: Standing, habits: Habits, p: PlacedObject, before: i
     legal = legal[met(ep, p.id, cands[legal], others) >= met(ep, p.id, here(p), others)[0]]
     if not len(legal):
         return None
-    setup = now.setup.without(p.id)
-    terms, base = setup.score(obj, cands[legal]), None
-    for k in np.lexsort((terms["total"], -gain[legal]))[:CHECKS]:
-        if terms["total"][k] > now.energy + TOL:
-            continue
-        pose = ep.scorer.place(obj, *(float(v) for v in cands[legal[k]]))
-        if habits.kept({**habits.feet, p.id: _footprint(pose)}) <= before:
-            continue
-        base = now.reach.blocked(others) if base is None else base
-        if (out := now.out_of_reach_with(others, base, pose)) <= now.out:
-            why = f"standing by its {', '.join(habits.beside(p.id, _footprint(pose)))}, as in the iTHOR rooms"
-            return Move([*others, pose], [move_step(p.id, pose, cands, legal, int(k), terms, why)],
-                        float(terms["total"][k]), out, lambda: setup.after(pose))
-    return None
+    return free_move(ep, now, obj, others, cands, legal, gain, now.setup.without(p.id),
+                     why=lambda pose: f"standing by its {', '.join(habits.beside(p.id, _footprint(pose)))}, as in the "
+                                      "iTHOR rooms",
+                     accept=lambda pose: habits.kept({**habits.feet, p.id: _footprint(pose)}) > before)
 
 
 def keep_companions(ep: Episode, observer: StepObserver | None = None) -> list[str]:

@@ -198,15 +198,32 @@ class Standing:
             return last
         return CandidateEnergy(self.ep.problem, self.ep.placed)
 
-    def out_of_reach_with(self, others: list[PlacedObject], base: np.ndarray | None, pose: PlacedObject) -> int:
-        """Task objects out of reach in `others` + `pose`; `base`: the blocked grid of `others`."""
-        return len(self.reach.unreachable([*others, pose], nav.blocked_with(self.reach.mesh, base, pose.body)))
-
     def moved(self, move: Move) -> None:
         self.ep.placed, self.ep.energy = move.placed, move.energy
         self.ep.terms = {**self.ep.terms, "total": move.energy}
         self.energy, self.out, self._next_setup = move.energy, move.out, move.setup
         self.__dict__.pop("setup", None)
+
+
+def free_move(ep: Episode, now: Standing, obj, others: list[PlacedObject], cands: np.ndarray, legal: np.ndarray,
+              gain: np.ndarray, setup: CandidateEnergy, why: Callable[[PlacedObject], str],
+              accept: Callable[[PlacedObject], bool] = lambda _: True) -> Move | None:
+    """Move `obj` alone (`others` where they are; `setup`: their energy set-up) to the first of its `legal`
+    poses, most `gain` then lowest energy first (of the `CHECKS` best), that raises no energy, passes `accept`
+    and leaves no more task objects out of reach; its step says `why(pose)`. None if none does."""
+    terms, base = setup.score(obj, cands[legal]), None
+    for k in np.lexsort((terms["total"], -gain[legal]))[:CHECKS]:
+        if terms["total"][k] > now.energy + TOL:
+            continue
+        pose = ep.scorer.place(obj, *(float(v) for v in cands[legal[k]]))
+        if not accept(pose):
+            continue
+        base = now.reach.blocked(others) if base is None else base  # the grid without `obj`, made once
+        out = len(now.reach.unreachable([*others, pose], nav.blocked_with(now.reach.mesh, base, pose.body)))
+        if out <= now.out:
+            return Move([*others, pose], [move_step(obj.id, pose, cands, legal, int(k), terms, why(pose))],
+                        float(terms["total"][k]), out, lambda: setup.after(pose))
+    return None
 
 
 def _relocation(ep: Episode, now: Standing, oid: str, make_way: bool = True) -> Move | None:
@@ -231,16 +248,8 @@ def _relocation(ep: Episode, now: Standing, oid: str, make_way: bool = True) -> 
             made.append(now.setup.without(oid))
         return made[0]
 
-    if len(legal):
-        terms, base = setup().score(obj, cands[legal]), None
-        for k in np.lexsort((terms["total"], -gain[legal]))[:CHECKS]:
-            if terms["total"][k] > now.energy + TOL:
-                continue
-            pose = ep.scorer.place(obj, *(float(v) for v in cands[legal[k]]))
-            base = now.reach.blocked(others) if base is None else base
-            if (out := now.out_of_reach_with(others, base, pose)) <= now.out:
-                return Move([*others, pose], [move_step(oid, pose, cands, legal, int(k), terms, MORE_MET)],
-                            float(terms["total"][k]), out, lambda: made[0].after(pose))
+    if len(legal) and (move := free_move(ep, now, obj, others, cands, legal, gain, setup(), lambda _: MORE_MET)):
+        return move
     if not make_way:
         return None
     for i, blockers in displacements(ep, obj, cands, swept, others, rank=gain, energy=setup, tries=MAKE_WAY_POSES):

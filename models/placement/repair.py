@@ -1,7 +1,8 @@
 """Repairs after the last object (not in the paper): a step-wise placer decides each object once, so what
 an early choice costs later is only seen at the end. The passes run only when something is wrong, each
 move is a placement step for the observer, fixed objects never move, and their time counts in PTO. The
-third pass, the constraints' polish, is in models.placement.polish.
+third and fourth passes, the constraints' polish and the companions' pass, are in models.placement.polish
+and models.placement.habits.
 
 - `make_room`: an object left out for want of room is placed where at most `MAX_BLOCKERS` placed objects
   stand in its way (fewest first, then its lowest energy; `TRIES` such poses; models.placement.moves), and
@@ -26,8 +27,8 @@ from models.geometry import SweptBoxes
 from models.placement.base import StepObserver
 from models.placement.candidates import PlacedObject
 from models.placement.greedy import NO_ROOM, Episode, candidate_bodies
-from models.placement.moves import Reach, displacements, legal_poses, move_step, scored
 from models.placement.habits import keep_companions
+from models.placement.moves import Reach, displacements, legal_poses, move_step, scored
 from models.placement.polish import polish
 
 ROUNDS, NEAR, CHECKS = 3, 4, 40  # restore_access
