@@ -379,7 +379,8 @@ def build_parser() -> argparse.ArgumentParser:
                    "instruction (default: drawn from each task)")
     p.add_argument("--dataset", default="seen", choices=["seen", "unseen_a", "unseen_b", "dense", "human", "varied"],
                    help="placement: which constraint dataset (plan2place only: varied, the checkpoint-choice plans)")
-    p.add_argument("--solvers", default="dfs,milp,z3", help="placement: comma-separated solver names")
+    p.add_argument("--solvers", default=None, help="comma-separated solver names; placement: default dfs,milp,z3; "
+                   "generate: default dfs and the default solver")
     p.add_argument("--seeds", type=int, default=5, help="placement: seeds per plan")
     p.add_argument("--budget", type=float, default=None, help="placement: time budget per plan (s)")
     p.add_argument("--out", default=None, help="placement: folder for results and plots")

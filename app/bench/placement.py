@@ -169,7 +169,7 @@ def plots(rows: list[dict], solvers: list[str], out: Path, dataset: str) -> list
 
 
 def main(args) -> int:
-    solvers = [s.strip() for s in args.solvers.split(",") if s.strip()]
+    solvers = [s.strip() for s in (args.solvers or "dfs,milp,z3").split(",") if s.strip()]
     for s in solvers:
         get_solver(s)  # unknown names fail here, before any work
     out = Path(args.out or f"out/bench/placement-{args.dataset}")

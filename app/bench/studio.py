@@ -27,6 +27,7 @@ import msgspec
 from app.bench.generate import pick_instructions, quantile
 from app.pipeline import Pipeline
 from models.language import RuleParser
+from models.placement import DEFAULT_SOLVER
 
 ARGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
         "--disable-background-networking", "--disable-component-update", "--disable-sync"]
@@ -155,7 +156,7 @@ def main(args) -> int:
     print(f"  sent for one Generate: {len(sent)} messages, {sum(b for _, b in sent) / 1024:.0f} KiB, "
           f"{kinds.get('LabelMessage', 0)} labels for {fresh[False][0]['objects']} objects; by kind: "
           + ", ".join(f"{k.removesuffix('Message')} {n}" for k, n in kinds.most_common(8)))
-    print(f"studio in chromium, {len(waits)} ALFRED valid_unseen instructions (rule parser, dfs)")
+    print(f"studio in chromium, {len(waits)} ALFRED valid_unseen instructions (rule parser, {DEFAULT_SOLVER})")
     print(f"  Generate -> scene ready    p50 {1000 * quantile(waits, .5):7.0f} ms   p90 {1000 * quantile(waits, .9):7.0f} ms")
     print(f"  pipeline alone (baseline)  p50 {1000 * quantile(bare, .5):7.0f} ms   -> browser round trip adds "
           f"{1000 * (quantile(waits, .5) - quantile(bare, .5)):.0f} ms")

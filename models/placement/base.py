@@ -83,7 +83,7 @@ def _plan2place_untrained() -> Solver:
 SOLVERS: dict[str, Callable[[], Solver]] = {"greedy": _greedy, "plan2place": _plan2place,
                                             "plan2place_untrained": _plan2place_untrained, "dfs": _dfs, "milp": _milp,
                                             "milp_whole": _milp_whole, "z3": _z3}
-DEFAULT_SOLVER = "dfs"
+DEFAULT_SOLVER = "plan2place"
 
 
 def get_solver(name: str | None = None) -> Solver:
