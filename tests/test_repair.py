@@ -4,7 +4,8 @@ move a step; a layout with nothing to repair is untouched."""
 
 from models.datasets import load_dataset
 from models.metrics import scene_metrics
-from models.placement.repair import Reach, make_room, restore_access
+from models.placement.moves import Reach
+from models.placement.repair import make_room, restore_access
 from models.placement.greedy import Episode, GreedySolver
 
 

@@ -44,6 +44,11 @@ class Reach:
         reach = nav.reachable_from(self.blocked(placed) if blocked is None else blocked, self.start)
         return [p.id for p in placed if p.id in self.task and not (self.strip(p) & reach).any()]
 
+    def out_with(self, others: list[PlacedObject], base: np.ndarray, pose: PlacedObject) -> int:
+        """How many task objects are out of reach once `pose` joins `others`, whose blocked grid is `base`
+        (updated around `pose` only)."""
+        return len(self.unreachable([*others, pose], nav.blocked_with(self.mesh, base, pose.body)))
+
 
 def legal_poses(ep: Episode, obj, placed: list[PlacedObject], cands: np.ndarray, swept: SweptBoxes,
                 relax: bool = True) -> np.ndarray:

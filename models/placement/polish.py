@@ -24,7 +24,6 @@ from functools import cached_property
 import numpy as np
 
 from models.constraints.evaluate import Poses, placement, relation, wall_clearance
-from models.energy import navigation as nav
 from models.energy.vectorised import CandidateEnergy
 from models.geometry import SweptBoxes
 from models.placement.base import PlacementStep, StepObserver
@@ -200,7 +199,7 @@ class Standing:
 
     def moved(self, move: Move) -> None:
         self.ep.placed, self.ep.energy = move.placed, move.energy
-        self.ep.terms = {**self.ep.terms, "total": move.energy}
+        self.ep.terms = dict(move.steps[-1].terms)  # the last step's: the moved layout's, nothing pending
         self.energy, self.out, self._next_setup = move.energy, move.out, move.setup
         self.__dict__.pop("setup", None)
 
@@ -219,8 +218,7 @@ def free_move(ep: Episode, now: Standing, obj, others: list[PlacedObject], cands
         if not accept(pose):
             continue
         base = now.reach.blocked(others) if base is None else base  # the grid without `obj`, made once
-        out = len(now.reach.unreachable([*others, pose], nav.blocked_with(now.reach.mesh, base, pose.body)))
-        if out <= now.out:
+        if (out := now.reach.out_with(others, base, pose)) <= now.out:
             return Move([*others, pose], [move_step(obj.id, pose, cands, legal, int(k), terms, why(pose))],
                         float(terms["total"][k]), out, lambda: setup.after(pose))
     return None

@@ -21,34 +21,34 @@ from __future__ import annotations
 
 import numpy as np
 
-from models.energy import navigation as nav
 from models.energy.vectorised import CandidateEnergy
 from models.geometry import SweptBoxes
 from models.placement.base import StepObserver
-from models.placement.candidates import PlacedObject
 from models.placement.greedy import NO_ROOM, Episode, candidate_bodies
 from models.placement.habits import keep_companions
-from models.placement.moves import Reach, displacements, legal_poses, move_step, scored
-from models.placement.polish import polish
+from models.placement.moves import displacements, legal_poses, move_step, scored
+from models.placement.polish import Move, Standing, polish
 
 ROUNDS, NEAR, CHECKS = 3, 4, 40  # restore_access
 
 
-def _best_move(ep: Episode, reach: Reach, placed: list[PlacedObject], oid: str, out_of_reach: int):
+def _best_move(ep: Episode, now: Standing, oid: str):
     """(task objects out of reach, energy, new pose, step) of the best pose for `oid`, or None if no pose
     reaches more of them than now."""
     obj = ep.problem.plan.object(oid)
-    others = [p for p in placed if p.id != oid]
-    cands, feasible, terms = scored(ep, obj, others, relax=False)
-    if not len(feasible):
+    others = [p for p in ep.placed if p.id != oid]
+    cands, body = candidate_bodies(ep.scorer, obj)
+    legal = legal_poses(ep, obj, others, cands, SweptBoxes(body), relax=False)
+    if not len(legal):
         return None
-    base = reach.blocked(others)
+    terms = now.setup.without(oid).score(obj, cands[legal])
+    base = now.reach.blocked(others)
     best = None
     for k in np.argsort(terms["total"], kind="stable")[:CHECKS]:
-        pose = ep.scorer.place(obj, *(float(v) for v in cands[feasible[k]]))
-        left = len(reach.unreachable([*others, pose], nav.blocked_with(reach.mesh, base, pose.body)))
-        if left < out_of_reach and (best is None or left < best[0]):
-            step = move_step(oid, pose, cands, feasible, int(k), terms, "clearing the robot's way to the task objects")
+        pose = ep.scorer.place(obj, *(float(v) for v in cands[legal[k]]))
+        left = now.reach.out_with(others, base, pose)
+        if left < now.out and (best is None or left < best[0]):
+            step = move_step(oid, pose, cands, legal, int(k), terms, "clearing the robot's way to the task objects")
             best = (left, float(terms["total"][k]), pose, step)
             if left == 0:
                 break
@@ -103,10 +103,10 @@ def make_room(ep: Episode, observer: StepObserver | None = None) -> list[str]:
 def restore_access(ep: Episode, observer: StepObserver | None = None) -> list[str]:
     """Move objects of the finished episode `ep` until every placed task object is reachable (or `ROUNDS`
     moves are spent, or no move helps); the ids moved, in order. Each move is a step for the observer."""
-    reach = Reach(ep)
+    now = Standing(ep)
     moved: list[str] = []
     for _ in range(ROUNDS):
-        out = reach.unreachable(ep.placed)
+        out = now.reach.unreachable(ep.placed)
         if not out:
             break
         pos = {p.id: p for p in ep.placed}
@@ -114,12 +114,13 @@ def restore_access(ep: Episode, observer: StepObserver | None = None) -> list[st
         near = sorted((p for p in free if p.id not in out),
                       key=lambda p: min(abs(p.x - pos[o].x) + abs(p.z - pos[o].z) for o in out))
         movable = [p.id for p in free if p.id in out] + [p.id for p in near[:NEAR]]
-        moves = [m for m in (_best_move(ep, reach, ep.placed, oid, len(out)) for oid in movable) if m]
+        moves = [m for m in (_best_move(ep, now, oid) for oid in movable) if m]
         if not moves:
             break
-        _, energy, pose, step = min(moves, key=lambda m: m[:2])
-        ep.placed = [pose if p.id == pose.id else p for p in ep.placed]
-        ep.energy, ep.terms = energy, step.terms
+        left, energy, pose, step = min(moves, key=lambda m: m[:2])
+        setup = now.setup.without(pose.id)
+        now.moved(Move([pose if p.id == pose.id else p for p in ep.placed], [step], energy, left,
+                       lambda: setup.after(pose)))
         moved.append(pose.id)
         if observer is not None:
             observer(step)
