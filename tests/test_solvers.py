@@ -89,7 +89,7 @@ def test_place_command_runs_every_solver(tmp_path, capsys, solver):
     assert f'"solver": "{solver}"' in (tmp_path / "layout.json").read_text()
 
 
-@pytest.mark.parametrize("solver", SOLVERS)
+@pytest.mark.parametrize("solver", [*SOLVERS, "greedy", "plan2place"])
 def test_an_edit_replans_from_the_edited_point(pipeline, solver):
     """Objects placed before the first object whose constraints changed keep their poses."""
     from app.pipeline import kept_before_edit
