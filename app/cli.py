@@ -8,6 +8,7 @@ from __future__ import annotations
 import argparse
 import json
 import sys
+from contextlib import nullcontext
 from pathlib import Path
 
 from pydantic import ValidationError
@@ -104,8 +105,10 @@ def cmd_place(args) -> int:
     plans = [load_plan(p) for p in args.plans]
     if len(plans) > 1 and not args.out_dir:
         raise BadInput("several plans need --out-dir DIR")
+    if args.steps and (len(plans) > 1 or (args.steps == "-" and not args.out)):
+        raise BadInput("--steps takes one plan; --steps - (steps on stdout) needs --out LAYOUT.json")
     for plan in plans:
-        layout = pipeline.place(plan, seed=args.seed, solver=args.solver)
+        layout = _place_stepwise(plan, args) if args.steps else pipeline.place(plan, seed=args.seed, solver=args.solver)
         if args.out_dir:
             Path(args.out_dir).mkdir(parents=True, exist_ok=True)
             (Path(args.out_dir) / f"{plan.id}.json").write_text(dump(layout) + "\n")
@@ -114,6 +117,17 @@ def cmd_place(args) -> int:
         else:
             print(dump(layout))
     return 0
+
+
+def _place_stepwise(plan, args):
+    """Place `plan`, writing each step as a JSON line to `args.steps` (a path, or - for stdout) as it is made."""
+    from models.placement import get_solver
+    from models.placement.stepping import Stepping, step_record
+    stepping = Stepping(get_solver(args.solver), plan, seed=args.seed)
+    with (nullcontext(sys.stdout) if args.steps == "-" else open(args.steps, "w")) as out:
+        for k, step in enumerate(stepping, 1):
+            print(json.dumps(step_record(step, k)), file=out, flush=True)
+    return stepping.layout
 
 
 def cmd_generate(args) -> int:
@@ -327,6 +341,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--seed", type=int, default=0)
     p.add_argument("--out", metavar="LAYOUT.json", help="write the layout here instead of stdout")
     p.add_argument("--out-dir", metavar="DIR", help="for several plans: DIR/<plan id>.json each")
+    p.add_argument("--steps", metavar="STEPS.jsonl", help="one plan: each placement step as a JSON line, written as "
+                   "the placer goes (pose, energy terms, a repair's reason, the best-scored candidates); - for stdout")
     p.set_defaults(run=cmd_place)
 
     p = sub.add_parser("generate", help="the whole pipeline -> task_graph, plan, layout, house JSON and GLB")

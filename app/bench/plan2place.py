@@ -87,6 +87,21 @@ def main(args) -> int:
 # ---- speed: PTO of dfs, greedy and plan2place on the same plans, in one process ----------------------
 
 SPEED_SOLVERS = ("dfs", "greedy", "plan2place")
+STEPPED = "+steps"  # a solver name with this suffix is timed through the step iterator (models.placement.stepping)
+
+
+class _Stepped:
+    """A solver run through `Stepping`, every step taken from the iterator: what the iterator costs."""
+
+    def __init__(self, name: str):
+        self.inner = get_solver(name)
+
+    def solve(self, plan, seed: int = 0):
+        from models.placement.stepping import Stepping
+        stepping = Stepping(self.inner, plan, seed)
+        for _ in stepping:
+            pass
+        return stepping.layout
 
 
 def speed(dataset: str = "seen", n: int = 20, seeds: int = 1, solvers=SPEED_SOLVERS
@@ -98,7 +113,8 @@ def speed(dataset: str = "seen", n: int = 20, seeds: int = 1, solvers=SPEED_SOLV
     import torch
     torch.set_num_threads(1)
     plans = [r.plan for r in pick_records(dataset, n)]
-    instances = {name: get_solver(name) for name in solvers}
+    instances = {name: _Stepped(name.removesuffix(STEPPED)) if name.endswith(STEPPED) else get_solver(name)
+                 for name in solvers}
     for s in instances.values():
         s.solve(plans[0], seed=0)
     out: dict[str, dict[str, list[float]]] = {name: {"wall": [], "cpu": []} for name in solvers}
