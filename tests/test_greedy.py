@@ -55,7 +55,7 @@ def test_greedy_keeps_fixed_poses_and_its_energy_is_the_judges():
 
 def test_fast_hard_filter_is_candidate_scorers():
     from models.geometry import SweptBoxes
-    from models.placement.greedy import candidate_bodies, hard_filter
+    from models.placement.greedy import hard_filter
     for plan in _plans(4):
         ep = Episode(plan)
         rng = np.random.default_rng(1)
@@ -63,7 +63,7 @@ def test_fast_hard_filter_is_candidate_scorers():
             obj = ep.order[ep.i]
             for strict in (True, False):
                 cands, scores, _ = ep.scorer.evaluate(obj, ep.placed, strict=strict)
-                cands_fast, body = candidate_bodies(ep.scorer, obj)
+                cands_fast, body = ep.scorer.bodies(obj)
                 ok, _ = hard_filter(ep.scorer, obj, ep.placed, cands_fast, SweptBoxes(body), strict)
                 assert np.array_equal(cands_fast, cands)
                 assert (ok == np.isfinite(scores)).all()

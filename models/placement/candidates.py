@@ -93,6 +93,7 @@ class CandidateScorer:
         self.step = step or (0.1 if room.width * room.depth <= 30 else 0.15)
         self.door_zones = np.array([self._door_zone(d.wall, d.center, d.width) for d in room.doors]).reshape(-1, 4)
         self._grids: dict[tuple[float, float], np.ndarray] = {}
+        self._bodies: dict[tuple[float, float], tuple[np.ndarray, np.ndarray]] = {}
 
     def _door_zone(self, wall: str, center: float, width: float) -> list[float]:
         half, c = width / 2 + 0.05, DOOR_CLEARANCE
@@ -131,8 +132,19 @@ class CandidateScorer:
             cands = np.empty((start, 3))
             for a, b, rot, xs, zs in blocks:  # = np.meshgrid(xs, zs, indexing="ij"), raveled
                 cands[a:b, 0], cands[a:b, 1], cands[a:b, 2] = np.repeat(xs, len(zs)), np.tile(zs, len(xs)), rot
+            cands.setflags(write=False)  # shared by every step and repair that places an object of this size
             self._grids[key] = cands, tuple(blocks)
         return self._grids[key]
+
+    def bodies(self, obj: PlanObject) -> tuple[np.ndarray, np.ndarray]:
+        """(`grid`'s candidates, their bodies' boxes), made once per object size (read-only)."""
+        key = (obj.size.x, obj.size.z)
+        if key not in self._bodies:
+            cands, blocks = self.grid(obj)
+            body = grid_boxes(cands, obj.size.x, obj.size.z, blocks)
+            body.setflags(write=False)
+            self._bodies[key] = cands, body
+        return self._bodies[key]
 
     def place(self, obj: PlanObject, x: float, z: float, rotation: float) -> PlacedObject:
         clearance = self.problem.clearance.get(obj.id, 0.0)

@@ -18,8 +18,7 @@ from models.energy.vectorised import CandidateEnergy
 from models.energy.weights import WEIGHTS
 from models.placement.base import Fixed, PlacementStep, StepObserver
 from models.geometry import SweptBoxes
-from models.placement.candidates import (OVERLAP_TOL, CandidateScorer, PlacedObject, Shared, front_boxes,
-                                         grid_boxes)
+from models.placement.candidates import OVERLAP_TOL, CandidateScorer, PlacedObject, Shared, front_boxes
 from models.placement.problem import PlacementProblem
 from models.placement.result import make_layout
 from models.values import ConstraintPlan, Layout, PlanObject
@@ -36,12 +35,6 @@ class Options:
     feasible: np.ndarray  # (M,) indices into cands
     terms: dict[str, np.ndarray]  # each (M,): energy of placed + candidate, remaining objects pending
     soft: np.ndarray  # (M,) the constraint score of candidates.CandidateScorer
-
-
-def candidate_bodies(scorer: CandidateScorer, obj: PlanObject) -> tuple[np.ndarray, np.ndarray]:
-    """(candidate poses, their bodies' boxes): what the hard filter, the soft score and the energy share."""
-    cands, blocks = scorer.grid(obj)
-    return cands, grid_boxes(cands, obj.size.x, obj.size.z, blocks)
 
 
 def hard_filter(scorer: CandidateScorer, obj: PlanObject, placed: list[PlacedObject], cands: np.ndarray,
@@ -113,7 +106,7 @@ class Episode:
             terms = self._energy.score(obj, cands)
             return Options(obj, cands, feasible, terms, soft)
         # the candidates' boxes and their sweep structure serve the hard filter, the soft score and the energy
-        cands, body = candidate_bodies(self.scorer, obj)
+        cands, body = self.scorer.bodies(obj)
         swept = SweptBoxes(body)
         strict = True
         ok, squared = hard_filter(self.scorer, obj, self.placed, cands, swept, True)

@@ -21,7 +21,7 @@ from models.energy.prior import relation_prior
 from models.geometry import SweptBoxes, boxes
 from models.placement.base import StepObserver
 from models.placement.candidates import PlacedObject
-from models.placement.greedy import Episode, candidate_bodies
+from models.placement.greedy import Episode
 from models.placement.moves import legal_poses
 from models.placement.polish import Move, Standing, crowded, free_move, here, met
 from models.values import ConstraintPlan
@@ -88,7 +88,7 @@ def _move(ep: Episode, now: Standing, habits: Habits, p: PlacedObject, before: i
         return None
     others = [q for q in ep.placed if q is not p]
     obj = ep.problem.plan.object(p.id)
-    cands, body = candidate_bodies(ep.scorer, obj)
+    cands, body = ep.scorer.bodies(obj)
     gain = habits.near(p.id, boxes(cands[:, 0], cands[:, 1], obj.size.x, obj.size.z, cands[:, 2]))
     better = np.flatnonzero(gain > current)
     if not len(better):

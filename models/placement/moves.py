@@ -14,7 +14,7 @@ from models.energy.weights import ACCESS_DEPTH, WEIGHTS
 from models.geometry import SweptBoxes
 from models.placement.base import PlacementStep
 from models.placement.candidates import OVERLAP_TOL, PlacedObject, front_boxes
-from models.placement.greedy import Episode, candidate_bodies, hard_filter
+from models.placement.greedy import Episode, hard_filter
 
 MAX_BLOCKERS, TRIES = 3, 5  # displacements
 
@@ -63,7 +63,7 @@ def legal_poses(ep: Episode, obj, placed: list[PlacedObject], cands: np.ndarray,
 def scored(ep: Episode, obj, placed: list[PlacedObject], pending=(), relax: bool = True):
     """(every candidate pose of `obj`, the indices of the legal ones, their energy terms with `placed` where
     they are and `pending` still to come); no terms when none is legal."""
-    cands, body = candidate_bodies(ep.scorer, obj)
+    cands, body = ep.scorer.bodies(obj)
     legal = legal_poses(ep, obj, placed, cands, SweptBoxes(body), relax)
     if not len(legal):
         return cands, legal, {}

@@ -28,7 +28,7 @@ from models.energy.vectorised import CandidateEnergy
 from models.geometry import SweptBoxes
 from models.placement.base import PlacementStep, StepObserver
 from models.placement.candidates import PlacedObject
-from models.placement.greedy import Episode, candidate_bodies, hard_filter
+from models.placement.greedy import Episode, hard_filter
 from models.placement.moves import Reach, displacements, legal_poses, move_step
 from models.values import ConstraintPlan
 
@@ -125,7 +125,7 @@ def _legal_among(ep: Episode, oid: str, placed: list[PlacedObject], memo: dict) 
     key = (oid, tuple(_key(p) for p in placed))
     if key not in memo:
         obj = ep.problem.plan.object(oid)
-        cands, body = candidate_bodies(ep.scorer, obj)
+        cands, body = ep.scorer.bodies(obj)
         memo[key] = cands, legal_poses(ep, obj, placed, cands, SweptBoxes(body))
     return memo[key]
 
@@ -230,7 +230,7 @@ def _relocation(ep: Episode, now: Standing, oid: str, make_way: bool = True) -> 
     current = next(p for p in ep.placed if p.id == oid)
     others = [p for p in ep.placed if p is not current]
     obj = ep.problem.plan.object(oid)
-    cands, body = candidate_bodies(ep.scorer, obj)
+    cands, body = ep.scorer.bodies(obj)
     gain = met(ep, oid, cands, others) - int(met(ep, oid, here(current), others)[0])
     better = np.flatnonzero(gain > 0)
     if not len(better):

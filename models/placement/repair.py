@@ -24,7 +24,7 @@ import numpy as np
 from models.energy.vectorised import CandidateEnergy
 from models.geometry import SweptBoxes
 from models.placement.base import StepObserver
-from models.placement.greedy import NO_ROOM, Episode, candidate_bodies
+from models.placement.greedy import NO_ROOM, Episode
 from models.placement.habits import keep_companions
 from models.placement.moves import displacements, legal_poses, move_step, scored
 from models.placement.polish import Move, Standing, polish
@@ -37,7 +37,7 @@ def _best_move(ep: Episode, now: Standing, oid: str):
     reaches more of them than now."""
     obj = ep.problem.plan.object(oid)
     others = [p for p in ep.placed if p.id != oid]
-    cands, body = candidate_bodies(ep.scorer, obj)
+    cands, body = ep.scorer.bodies(obj)
     legal = legal_poses(ep, obj, others, cands, SweptBoxes(body), relax=False)
     if not len(legal):
         return None
@@ -67,7 +67,7 @@ def make_room(ep: Episode, observer: StepObserver | None = None) -> list[str]:
     placed or moved, in order."""
     done: list[str] = []
     for obj in [o for o in ep.order if ep.failed.get(o.id) == NO_ROOM and o.id not in ep.problem.fixed]:
-        cands, body = candidate_bodies(ep.scorer, obj)
+        cands, body = ep.scorer.bodies(obj)
         swept = SweptBoxes(body)
         for i, blockers in displacements(ep, obj, cands, swept, ep.placed):
             pose = ep.scorer.place(obj, *(float(v) for v in cands[i]))
