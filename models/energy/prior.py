@@ -22,6 +22,7 @@ from pathlib import Path
 
 import numpy as np
 
+from models.constraints.evaluate import gap_of_boxes
 from models.world import catalogue
 
 GAP_BINS = (0.0, 0.1, 0.3, 0.6, 1.0, 1.5, 2.5, 4.0)  # left edges, metres; last bin open
@@ -46,12 +47,6 @@ def _box(o) -> tuple[float, float, float, float]:
     return (o["x"] - o["size"][0] / 2, o["z"] - o["size"][2] / 2, o["x"] + o["size"][0] / 2, o["z"] + o["size"][2] / 2)
 
 
-def _gap(a, b) -> float:
-    dx = max(0.0, a[0] - b[2], b[0] - a[2])
-    dz = max(0.0, a[1] - b[3], b[1] - a[3])
-    return math.hypot(dx, dz)
-
-
 def learn(scenes: list[dict], floor_types: set[str]) -> dict:
     """Counts over the floor-standing objects (ProcTHOR's onFloor types) of every iTHOR room."""
     pairs: dict[str, dict[str, list[int]]] = defaultdict(lambda: {"gap": [0] * len(GAP_BINS), "turn": [0] * TURN_BINS})
@@ -73,8 +68,9 @@ def learn(scenes: list[dict], floor_types: set[str]) -> dict:
                 if b is not a:
                     by_type[b["type"]].append(b)
             for b_type, bs in by_type.items():
-                nearest = min(bs, key=lambda b: _gap(ab, _box(b)))
-                g = int(gap_bin(_gap(ab, _box(nearest))))
+                gaps = gap_of_boxes(np.array(ab), np.array([_box(b) for b in bs]))
+                nearest = bs[int(np.argmin(gaps))]
+                g = int(gap_bin(float(gaps.min())))
                 t = int(turn_bin(a["rotation"] - nearest["rotation"]))
                 for room in (scene["room_type"], POOLED):
                     entry = pairs[f"{room}|{a['type']}|{b_type}"]
