@@ -314,6 +314,16 @@ def cmd_bench(args) -> int:
     return run_benchmark(args.what, args)
 
 
+def _parser_options(p: argparse.ArgumentParser) -> None:
+    """The instruction parser's options, shared by `parse` and `generate`."""
+    p.add_argument("--parser", choices=["combined", "rules", "lora", "openai"], default=None,
+                   help="instruction parser (default: combined = rules + the LoRA language model, the rules "
+                   "alone if it cannot load; or H3DS_PARSER)")
+    p.add_argument("--openai-url", default=None, help="--parser openai: the server's base URL, e.g. "
+                   "http://127.0.0.1:8000/v1 (or H3DS_OPENAI_BASE_URL)")
+    p.add_argument("--openai-model", default=None, help="--parser openai: the served model's name")
+
+
 def build_parser() -> argparse.ArgumentParser:
     room_help = f"one of: {', '.join(ROOM_TYPES)} (any case; living_room works too)"
     ap = Parser(prog="h3ds", description="Turn a household instruction into an AI2-THOR scene for a robot and a "
@@ -327,12 +337,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--batch", metavar="IN.jsonl", help='many instructions, one {"id", "instruction", '
                    '"room_type"?} per line')
     p.add_argument("--out", metavar="OUT.jsonl", help="with --batch: write here instead of stdout")
-    p.add_argument("--parser", choices=["combined", "rules", "lora", "openai"], default=None,
-                   help="instruction parser (default: combined = rules + the LoRA language model, the rules "
-                   "alone if it cannot load; or H3DS_PARSER)")
-    p.add_argument("--openai-url", default=None, help="--parser openai: the server's base URL, e.g. "
-                   "http://127.0.0.1:8000/v1 (or H3DS_OPENAI_BASE_URL)")
-    p.add_argument("--openai-model", default=None, help="--parser openai: the served model's name")
+    _parser_options(p)
     p.set_defaults(run=cmd_parse)
 
     p = sub.add_parser("place", help="place the objects of constraint plan(s) -> layout JSON")
@@ -353,12 +358,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--seed", type=int, default=0, help="same seed, same scene")
     p.add_argument("--solver", default=None, help=SOLVER_HELP)
     p.add_argument("--out", required=True, metavar="DIR")
-    p.add_argument("--parser", choices=["combined", "rules", "lora", "openai"], default=None,
-                   help="instruction parser (default: combined = rules + the LoRA language model, the rules "
-                   "alone if it cannot load; or H3DS_PARSER)")
-    p.add_argument("--openai-url", default=None, help="--parser openai: the server's base URL, e.g. "
-                   "http://127.0.0.1:8000/v1 (or H3DS_OPENAI_BASE_URL)")
-    p.add_argument("--openai-model", default=None, help="--parser openai: the served model's name")
+    _parser_options(p)
     p.set_defaults(run=cmd_generate)
 
     p = sub.add_parser("studio", help="the browser studio and its HTTP API (prints the URLs)")

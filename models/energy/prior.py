@@ -47,19 +47,28 @@ def _box(o) -> tuple[float, float, float, float]:
     return (o["x"] - o["size"][0] / 2, o["z"] - o["size"][2] / 2, o["x"] + o["size"][0] / 2, o["z"] + o["size"][2] / 2)
 
 
+def standing_objects(scene: dict, types: set[str]) -> list[dict]:
+    """The objects of an iTHOR `scene` of one of `types` that stand on the floor itself."""
+    return [o for o in scene["objects"] if o["type"] in types and set(o["parents"]) <= {"Floor"}]
+
+
+def wall_touch(scene: dict, objects: list[dict]) -> list[bool]:
+    """For each of `objects`: whether its footprint is within WALL_TOUCH of a wall of `scene`. The walls are the
+    extent of everything in the room but the floor slab (which runs under them): windows, light switches and
+    paintings sit on the walls."""
+    others = [_box(o) for o in scene["objects"] if o["type"] != "Floor"]
+    fb = (min(b[0] for b in others), min(b[1] for b in others), max(b[2] for b in others), max(b[3] for b in others))
+    return [min(b[0] - fb[0], b[1] - fb[1], fb[2] - b[2], fb[3] - b[3]) <= WALL_TOUCH for b in map(_box, objects)]
+
+
 def learn(scenes: list[dict], floor_types: set[str]) -> dict:
     """Counts over the floor-standing objects (ProcTHOR's onFloor types) of every iTHOR room."""
     pairs: dict[str, dict[str, list[int]]] = defaultdict(lambda: {"gap": [0] * len(GAP_BINS), "turn": [0] * TURN_BINS})
     walls: dict[str, list[int]] = defaultdict(lambda: [0, 0])
     for scene in scenes:
-        # the walls: the extent of everything in the room but the floor slab (which runs under them);
-        # windows, light switches and paintings sit on the walls, so this is where the walls are
-        others = [_box(o) for o in scene["objects"] if o["type"] != "Floor"]
-        fb = (min(b[0] for b in others), min(b[1] for b in others), max(b[2] for b in others), max(b[3] for b in others))
-        standing = [o for o in scene["objects"] if o["type"] in floor_types and set(o["parents"]) <= {"Floor"}]
-        for a in standing:
+        standing = standing_objects(scene, floor_types)
+        for a, touch in zip(standing, wall_touch(scene, standing)):
             ab = _box(a)
-            touch = min(ab[0] - fb[0], ab[1] - fb[1], fb[2] - ab[2], fb[3] - ab[3]) <= WALL_TOUCH
             for room in (scene["room_type"], POOLED):
                 walls[f"{room}|{a['type']}"][0] += touch
                 walls[f"{room}|{a['type']}"][1] += 1

@@ -31,7 +31,9 @@ from pathlib import Path
 
 import numpy as np
 
-from models.energy.prior import POOLED, WALL_TOUCH, _box, _gap, floor_types, ithor_scenes, judge_scene
+from models.constraints.evaluate import gap_of_boxes
+from models.energy.prior import (POOLED, WALL_TOUCH, _box, floor_types, ithor_scenes, judge_scene, standing_objects,
+                                 wall_touch)
 from models.geometry import boxes, front
 from models.values import ConstraintPlan, Layout
 
@@ -48,12 +50,8 @@ def fit(scenes: list[dict], types: set[str]) -> dict:
     wall: dict[str, list[int]] = defaultdict(lambda: [0, 0])
     pair_rooms: dict[str, list] = defaultdict(lambda: [0, 0, 0.0])  # rooms with both, rooms close, largest gap
     for scene in scenes:
-        others = [_box(o) for o in scene["objects"] if o["type"] != "Floor"]
-        fb = (min(b[0] for b in others), min(b[1] for b in others), max(b[2] for b in others), max(b[3] for b in others))
-        standing = [o for o in scene["objects"] if o["type"] in types and set(o["parents"]) <= {"Floor"}]
-        for a in standing:
-            ab = _box(a)
-            touch = min(ab[0] - fb[0], ab[1] - fb[1], fb[2] - ab[2], fb[3] - ab[3]) <= WALL_TOUCH
+        standing = standing_objects(scene, types)
+        for a, touch in zip(standing, wall_touch(scene, standing)):
             for room in (scene["room_type"], POOLED):
                 wall[f"{room}|{a['type']}"][0] += touch
                 wall[f"{room}|{a['type']}"][1] += 1
@@ -62,8 +60,8 @@ def fit(scenes: list[dict], types: set[str]) -> dict:
             for b_type in present:
                 if a_type == b_type:
                     continue
-                gaps = [min(_gap(_box(a), _box(b)) for b in standing if b["type"] == b_type)
-                        for a in standing if a["type"] == a_type]
+                theirs = np.array([_box(b) for b in standing if b["type"] == b_type])
+                gaps = [float(gap_of_boxes(np.array(_box(a)), theirs).min()) for a in standing if a["type"] == a_type]
                 close = [g for g in gaps if g <= COMPANION_GAP]
                 for room in (scene["room_type"], POOLED):
                     entry = pair_rooms[f"{room}|{a_type}|{b_type}"]
@@ -126,7 +124,7 @@ def realism_checks(plan: ConstraintPlan, layout: Layout) -> tuple[int, int]:
             total += 1
             targets = [box[t.id] for t in plan.objects if t.type == target_type and t.id in placed]
             if p is not None and targets:
-                passed += min(_gap(tuple(box[o.id]), tuple(t)) for t in targets) <= allowed + 1e-9
+                passed += float(gap_of_boxes(np.array(box[o.id]), np.array(targets)).min()) <= allowed + 1e-9
     return passed, total
 
 
