@@ -19,7 +19,10 @@ from __future__ import annotations
 import math
 import random
 
-from models.energy.prior import _box, _gap, floor_types, ithor_scenes
+import numpy as np
+
+from models.constraints.evaluate import gap_of_boxes
+from models.energy.prior import _box, floor_types, ithor_scenes
 from models.values import ConstraintPlan, Layout, Placement, Size, Timing
 
 DENSE_PLANS = 300
@@ -135,8 +138,9 @@ def human_plan(scene: dict, types: set[str]) -> tuple[ConstraintPlan, Layout] | 
         b = boxes[i]
         wall = min(b[0], b[1], width - b[2], depth - b[3])
         parts = [oid, "edge" if wall <= HUMAN_TOUCH else "middle"]
-        gaps = [(_gap(b, boxes[j]), j) for j in range(len(placements)) if j != i]
-        g, j = min(gaps)
+        others = [j for j in range(len(placements)) if j != i]
+        gaps = gap_of_boxes(np.array(b), np.array([boxes[j] for j in others]))
+        g, j = float(gaps.min()), others[int(np.argmin(gaps))]
         if g <= HUMAN_NEAR:
             parts.append(f"near, {placements[j][0]}")
         fx, fz = math.sin(math.radians(rot)), math.cos(math.radians(rot))
