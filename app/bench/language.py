@@ -3,7 +3,7 @@ language evaluation sets (models/datasets/language_sets.py), with the metrics of
 models/metrics/language.py (object F1, iRecall, GED, roles per class) and latency per instruction.
 
 The model reads each (instruction, room type) once; its readings (compact fields, per-field
-log-probabilities, seconds) are kept in a JSONL cache (`CACHE`), so the combination policies can be
+log-probabilities, seconds) are kept in a JSONL cache per adapter (`readings_cache`), so the combination policies can be
 re-scored, and more sets added, without decoding again. The `lora` graph is the model's reading, each
 `combined` graph merges it with the rules' reading; latency is rules (measured live) + model (as cached)
 + merge, as `h3ds parse` runs them (rules only where the model is not asked). The policy is chosen on
@@ -25,7 +25,6 @@ from pathlib import Path
 from models.language import InstructionError, RuleParser
 
 RESULTS = Path(__file__).parent / "results"
-CACHE = RESULTS / "language-lora-readings.jsonl"
 SETS = ("id_eval", "id_eval_dedup", "valid_unseen", "valid_unseen_dedup", "ts", "ts_dedup", "os", "os_dedup")
 POLICY_ROWS = 1000  # id_train rows unseen by the adapter, on which the combination policy is chosen
 # Confirmation sets: id_train rows set aside after the policy choice, never looked at before the decision
@@ -94,7 +93,15 @@ def confirmation_sets(n: int = CONFIRM_ROWS) -> dict[str, tuple]:
             CONFIRMATION[2]: tuple(object_shift(rows, CONFIRM_SEED))}
 
 
-def lora_readings(rows, lm, cache: Path = CACHE, progress: bool = True) -> dict[tuple[str, str], dict]:
+def readings_cache(adapter: Path) -> Path:
+    """The readings cache of an adapter, named by a digest of its weights: another adapter (or the
+    shipped one replaced) never reads the readings of this one."""
+    import hashlib
+    digest = hashlib.sha256((Path(adapter) / "adapter_model.safetensors").read_bytes()).hexdigest()[:10]
+    return RESULTS / f"language-lora-readings-{digest}.jsonl"
+
+
+def lora_readings(rows, lm, cache: Path, progress: bool = True) -> dict[tuple[str, str], dict]:
     """The model's reading of every row, by (instruction with spacing folded, room type): fields,
     per-field log-probabilities and seconds. Readings are appended to the JSONL `cache` as they are made
     and read back from it, so a later run (another combination policy, more sets) decodes only new rows."""
@@ -257,7 +264,7 @@ def main(args) -> int:
     review = reviewed_rows()
     all_rows = [r for rows in sets.values() for r in rows] + [r for r, _ in review]
     lm = LoraParser()
-    readings = lora_readings(all_rows, lm)
+    readings = lora_readings(all_rows, lm, readings_cache(lm.adapter))
     rules = RuleParser()
     combined = {"combined" if p == DEFAULT_POLICY else f"combined {p}": CombinedParser(lm=lm, rules=rules, policy=p)
                 for p in POLICIES}
