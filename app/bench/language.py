@@ -42,6 +42,8 @@ def _adapter_split(adapter: Path | None = None) -> tuple[tuple, list[int], list[
     from models.language.llm.parser import default_adapter
     from models.language.llm.train import META_FILE
     meta = json.loads(((adapter or default_adapter()) / META_FILE).read_text())
+    while "init" in meta:  # continued from another adapter on its own trained rows: that adapter's split
+        meta = meta["init"]
     cfg, steps = meta["config"], meta["steps"]
     train = load_language_set("id_train")
     order = list(range(len(train)))
@@ -59,6 +61,21 @@ def unseen_train_rows(n: int | None = None, adapter: Path | None = None) -> list
     held-out rows and those after its last step in the seeded epoch-0 order)."""
     train, _, unseen = _adapter_split(adapter)
     return [train[i] for i in (unseen[::max(1, len(unseen) // n)][:n] if n else unseen)]
+
+
+def trained_rows(adapter: Path | None = None) -> list:
+    """The id_train rows the shipped adapter trained on (the only rows `--augment` may use)."""
+    train, seen, _ = _adapter_split(adapter)
+    return [train[i] for i in seen]
+
+
+def kept_apart_texts() -> set[str]:
+    """Texts (case and spacing folded) that no training may use: the policy rows, the confirmation
+    sets and every evaluation set (`SETS`)."""
+    from models.datasets.language_sets import load_language_set, text_key
+    rows = [*unseen_train_rows(POLICY_ROWS), *(r for s in confirmation_sets().values() for r in s),
+            *(r for name in SETS for r in load_language_set(name))]
+    return {text_key(r.instruction) for r in rows}
 
 
 def confirmation_rows(n: int = CONFIRM_ROWS, adapter: Path | None = None) -> list:
