@@ -388,7 +388,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--solvers", default="dfs,milp,z3", help="placement: comma-separated solver names")
     p.add_argument("--seeds", type=int, default=5, help="placement: seeds per plan")
     p.add_argument("--budget", type=float, default=None, help="placement: time budget per plan (s)")
-    p.add_argument("--out", default=None, help="placement: folder for results and plots")
+    p.add_argument("--out", default=None, help="placement, language: folder for results and plots")
+    p.add_argument("--adapter", default=None, metavar="DIR", help="language: the LoRA adapter to measure "
+                   "(default: the shipped one)")
     p.add_argument("--sets", default=None, help="language: comma-separated evaluation sets (default: all)")
     p.add_argument("--per-set", type=int, default=0, help="language: instructions per set (0: all)")
     p.add_argument("--decoding", type=int, default=0, metavar="N", help="language: also compare constrained "

@@ -280,7 +280,7 @@ def main(args) -> int:
         sets = {k: v[::max(1, len(v) // args.per_set)][:args.per_set] for k, v in sets.items()}
     review = reviewed_rows()
     all_rows = [r for rows in sets.values() for r in rows] + [r for r, _ in review]
-    lm = LoraParser()
+    lm = LoraParser(adapter=args.adapter)  # None: the shipped adapter
     readings = lora_readings(all_rows, lm, readings_cache(lm.adapter))
     rules = RuleParser()
     combined = {"combined" if p == DEFAULT_POLICY else f"combined {p}": CombinedParser(lm=lm, rules=rules, policy=p)
@@ -332,11 +332,12 @@ def main(args) -> int:
         rows = load_annotations("valid_seen")  # = id_eval, as ALFRED annotations (the training targets' form)
         lines += [""] + compare_decoding(rows[::max(1, len(rows) // args.decoding)][:args.decoding], lm)
     print("\n".join(lines))
-    RESULTS.mkdir(exist_ok=True)
-    (RESULTS / "language.md").write_text("\n".join(lines) + "\n")
-    (RESULTS / "language.json").write_text(json.dumps({"sets": scored, "review": scored_review,
-                                                          "room_type": rooms, "decisions": decided}, indent=1) + "\n")
-    print(f"written: {RESULTS / 'language.md'}, {RESULTS / 'language.json'}")
+    out = Path(args.out) if args.out else RESULTS
+    out.mkdir(parents=True, exist_ok=True)
+    (out / "language.md").write_text("\n".join(lines) + "\n")
+    (out / "language.json").write_text(json.dumps({"adapter": str(lm.adapter), "sets": scored, "review": scored_review,
+                                                   "room_type": rooms, "decisions": decided}, indent=1) + "\n")
+    print(f"written: {out / 'language.md'}, {out / 'language.json'}")
     return 0
 
 
