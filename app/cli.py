@@ -268,13 +268,19 @@ def cmd_feedback_export(args) -> int:
 
 
 def cmd_train_language(args) -> int:
-    from models.language.llm.data import training_examples
+    from models.language.llm.data import augmented_examples, training_examples
     from models.language.llm.train import TrainConfig, train
     cfg = TrainConfig(out=args.out, base=args.base, seed=args.seed, epochs=args.epochs, max_steps=args.max_steps,
-                      batch_size=args.batch_size, lr=args.lr, lora_r=args.lora_r, lora_alpha=args.lora_alpha,
-                      lora_dropout=args.lora_dropout, lora_layers=args.lora_layers or None,
-                      save_every=args.save_every, limit=args.limit, threads=args.threads)
-    adapter = train(cfg, training_examples())
+                      batch_size=args.batch_size, lr=args.lr, warmup=args.warmup, lora_r=args.lora_r,
+                      lora_alpha=args.lora_alpha, lora_dropout=args.lora_dropout,
+                      lora_layers=args.lora_layers or None, save_every=args.save_every, limit=args.limit,
+                      threads=args.threads, init_adapter=args.init_adapter)
+    if args.augment:
+        from app.bench.language import kept_apart_texts, trained_rows
+        rows = augmented_examples(trained_rows(), kept_apart_texts())
+    else:
+        rows = training_examples()
+    adapter = train(cfg, rows)
     print(f"adapter: {adapter}  (loss curves: {Path(args.out) / 'loss.csv'}, {Path(args.out) / 'loss.png'})")
     print(f"use it: cp {adapter}/* models/weights/lora/   or   LoraParser(adapter='{adapter}')")
     return 0
@@ -399,7 +405,9 @@ def build_parser() -> argparse.ArgumentParser:
                    "generate: default dfs and the default solver")
     p.add_argument("--seeds", type=int, default=5, help="placement: seeds per plan")
     p.add_argument("--budget", type=float, default=None, help="placement: time budget per plan (s)")
-    p.add_argument("--out", default=None, help="placement: folder for results and plots")
+    p.add_argument("--out", default=None, help="placement, language: folder for results and plots")
+    p.add_argument("--adapter", default=None, metavar="DIR", help="language: the LoRA adapter to measure "
+                   "(default: the shipped one)")
     p.add_argument("--sets", default=None, help="language: comma-separated evaluation sets (default: all)")
     p.add_argument("--per-set", type=int, default=0, help="language: instructions per set (0: all)")
     p.add_argument("--decoding", type=int, default=0, metavar="N", help="language: also compare constrained "
@@ -421,6 +429,12 @@ def build_parser() -> argparse.ArgumentParser:
     t.add_argument("--max-steps", type=int, default=None, help="stop after N optimiser steps (overrides --epochs)")
     t.add_argument("--batch-size", type=int, default=16)
     t.add_argument("--lr", type=float, default=1e-3)
+    t.add_argument("--warmup", type=int, default=20, help="linear warm-up steps (then cosine to 10 %%)")
+    t.add_argument("--init-adapter", default=None, metavar="DIR", help="continue training this adapter (e.g. "
+                   "models/weights/lora; its LoRA settings, not --lora-*)")
+    t.add_argument("--augment", action="store_true", help="train on the rows the shipped adapter trained on, each "
+                   "as it is plus its object-shift (training pool of rare types) and text-shift versions (a "
+                   "training seed of their own); the policy, confirmation and evaluation rows stay unseen")
     t.add_argument("--lora-r", type=int, default=16, help="the paper: 32")
     t.add_argument("--lora-alpha", type=float, default=21.5, help="the paper: 43")
     t.add_argument("--lora-dropout", type=float, default=0.05, help="the paper: 0.05")

@@ -115,3 +115,36 @@ def test_latency_counts_the_model_only_where_it_is_asked():
     lamp, book = [(r.instruction, r.room_type) for r in rows]
     assert seconds["strict"][lamp] < 0.1 and seconds["first"][lamp] >= 0.5  # a lamp alone: the rules stand
     assert seconds["strict"][book] >= 0.5
+
+
+def test_augmented_rows_keep_the_policy_and_confirmation_rows_unseen_and_use_only_the_training_pool():
+    from app.bench.language import (POLICY_ROWS, confirmation_rows, kept_apart_texts, readings_cache,
+                                    trained_rows)
+    from models.datasets.language_sets import object_shift, rare_target_pools, text_key
+    from models.language.llm.data import AUGMENT_SEED, augmented_examples
+    trained, kept_apart = trained_rows(), kept_apart_texts()
+    policy, confirm = unseen_train_rows(POLICY_ROWS), confirmation_rows()
+    assert {text_key(r.instruction) for r in [*policy, *confirm]} <= kept_apart
+    assert not {r.source for r in trained} & {r.source for r in [*policy, *confirm]}
+    rows = trained[:150] + policy[:5] + confirm[:5]  # rows that must stay unseen are dropped, rewrites too
+    examples = augmented_examples(rows, kept_apart)
+    assert not {text_key(e.instruction) for e in examples} & kept_apart
+    pool, held_out = rare_target_pools()
+    assert len(pool) == len(held_out) and not set(pool) & set(held_out) and rare_target_pools() == (pool, held_out)
+    kept = [r for r in rows if text_key(r.instruction) not in kept_apart]
+    assert len(kept) <= 150 and examples[:len(kept)] and {e.instruction for e in examples[:len(kept)]} == \
+        {r.instruction for r in kept}
+    shifted = object_shift(kept, AUGMENT_SEED, pool)  # the object-shift part of the examples
+    assert shifted and {r.label.target for r in shifted} <= set(pool)
+    assert {e.instruction for e in examples} >= {r.instruction for r in shifted if text_key(r.instruction) not in kept_apart}
+    as_is = {e.fields.target for e in examples[:len(kept)]}
+    assert {e.fields.target for e in examples} - as_is <= set(pool)  # a held-out type only where ALFRED named it
+
+
+def test_each_adapter_has_its_own_readings_cache(tmp_path):
+    from app.bench.language import readings_cache
+    for name, data in (("a", b"1"), ("b", b"2"), ("c", b"1")):
+        (tmp_path / name).mkdir()
+        (tmp_path / name / "adapter_model.safetensors").write_bytes(data)
+    assert readings_cache(tmp_path / "a") != readings_cache(tmp_path / "b")
+    assert readings_cache(tmp_path / "a") == readings_cache(tmp_path / "c")

@@ -118,3 +118,45 @@ def test_train_language_command_writes_curves_and_adapter(tiny, tmp_path, capsys
                  "--limit", "30", "--lora-r", "2", "--lora-alpha", "4", "--lora-layers", "1", "--save-every", "1"]) == 0
     assert "adapter:" in capsys.readouterr().out
     assert (out / "adapter" / "adapter_config.json").exists() and (out / "loss.png").exists()
+
+
+def test_training_continues_from_an_adapter_with_its_settings_and_metadata(tiny, tmp_path):
+    import json
+
+    from safetensors.torch import load_file
+
+    from models.language.llm.data import training_examples
+    from models.language.llm.train import TrainConfig, train
+    first = _train(tiny, tmp_path / "a", 2)
+
+    def cont(out, steps, lr):
+        cfg = TrainConfig(out=str(out), base=str(tiny), max_steps=steps, batch_size=4, save_every=1, val_size=4,
+                          limit=60, lr=lr, init_adapter=str(first))
+        return train(cfg, training_examples(), progress=False)
+    still = cont(tmp_path / "b", 1, 0.0)  # learning rate 0: the adapter comes back as it was loaded
+    before, after = load_file(first / "adapter_model.safetensors"), load_file(still / "adapter_model.safetensors")
+    assert before.keys() == after.keys() and all((before[k] == after[k]).all() for k in before)
+    assert json.loads((still / "adapter_config.json").read_text())["r"] == 4  # the init adapter's r, not 16
+    assert json.loads((still / "h3ds_meta.json").read_text())["init"] == json.loads((first / "h3ds_meta.json").read_text())
+    # resumable as a run from scratch: 1 step then on to 3 gives the curve of 3 steps at once
+    cont(tmp_path / "c", 3, 5e-3)
+    cont(tmp_path / "d", 1, 5e-3)
+    cont(tmp_path / "d", 3, 5e-3)
+    assert _losses(tmp_path / "d") == _losses(tmp_path / "c") and len({x for _, x in _losses(tmp_path / "c")}) > 1
+
+
+def test_train_language_command_continues_an_adapter_on_augmented_rows(tiny, tmp_path, monkeypatch, capsys):
+    import json
+
+    import app.bench.language as bench
+    from app.cli import main
+    from models.datasets.language_sets import load_language_set
+    first = _train(tiny, tmp_path / "a", 2)
+    monkeypatch.setattr(bench, "trained_rows", lambda: list(load_language_set("id_train")[:24]))
+    monkeypatch.setattr(bench, "kept_apart_texts", lambda: set())
+    out = tmp_path / "run"
+    assert main(["train", "language", "--base", str(tiny), "--out", str(out), "--max-steps", "2", "--batch-size", "2",
+                 "--init-adapter", str(first), "--augment", "--save-every", "1", "--warmup", "1"]) == 0
+    assert "adapter:" in capsys.readouterr().out
+    assert (out / "adapter" / "adapter_config.json").exists() and (out / "loss.png").exists()
+    assert json.loads((out / "adapter" / "h3ds_meta.json").read_text())["config"]["init_adapter"] == str(first)

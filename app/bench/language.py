@@ -3,7 +3,7 @@ language evaluation sets (models/datasets/language_sets.py), with the metrics of
 models/metrics/language.py (object F1, iRecall, GED, roles per class) and latency per instruction.
 
 The model reads each (instruction, room type) once; its readings (compact fields, per-field
-log-probabilities, seconds) are kept in a JSONL cache (`CACHE`), so the combination policies can be
+log-probabilities, seconds) are kept in a JSONL cache per adapter (`readings_cache`), so the combination policies can be
 re-scored, and more sets added, without decoding again. The `lora` graph is the model's reading, each
 `combined` graph merges it with the rules' reading; latency is rules (measured live) + model (as cached)
 + merge, as `h3ds parse` runs them (rules only where the model is not asked). The policy is chosen on
@@ -25,7 +25,6 @@ from pathlib import Path
 from models.language import InstructionError, RuleParser
 
 RESULTS = Path(__file__).parent / "results"
-CACHE = RESULTS / "language-lora-readings.jsonl"
 SETS = ("id_eval", "id_eval_dedup", "valid_unseen", "valid_unseen_dedup", "ts", "ts_dedup", "os", "os_dedup")
 POLICY_ROWS = 1000  # id_train rows unseen by the adapter, on which the combination policy is chosen
 # Confirmation sets: id_train rows set aside after the policy choice, never looked at before the decision
@@ -43,6 +42,8 @@ def _adapter_split(adapter: Path | None = None) -> tuple[tuple, list[int], list[
     from models.language.llm.parser import default_adapter
     from models.language.llm.train import META_FILE
     meta = json.loads(((adapter or default_adapter()) / META_FILE).read_text())
+    while "init" in meta:  # continued from another adapter on its own trained rows: that adapter's split
+        meta = meta["init"]
     cfg, steps = meta["config"], meta["steps"]
     train = load_language_set("id_train")
     order = list(range(len(train)))
@@ -60,6 +61,21 @@ def unseen_train_rows(n: int | None = None, adapter: Path | None = None) -> list
     held-out rows and those after its last step in the seeded epoch-0 order)."""
     train, _, unseen = _adapter_split(adapter)
     return [train[i] for i in (unseen[::max(1, len(unseen) // n)][:n] if n else unseen)]
+
+
+def trained_rows(adapter: Path | None = None) -> list:
+    """The id_train rows the shipped adapter trained on (the only rows `--augment` may use)."""
+    train, seen, _ = _adapter_split(adapter)
+    return [train[i] for i in seen]
+
+
+def kept_apart_texts() -> set[str]:
+    """Texts (case and spacing folded) that no training may use: the policy rows, the confirmation
+    sets and every evaluation set (`SETS`)."""
+    from models.datasets.language_sets import load_language_set, text_key
+    rows = [*unseen_train_rows(POLICY_ROWS), *(r for s in confirmation_sets().values() for r in s),
+            *(r for name in SETS for r in load_language_set(name))]
+    return {text_key(r.instruction) for r in rows}
 
 
 def confirmation_rows(n: int = CONFIRM_ROWS, adapter: Path | None = None) -> list:
@@ -94,7 +110,15 @@ def confirmation_sets(n: int = CONFIRM_ROWS) -> dict[str, tuple]:
             CONFIRMATION[2]: tuple(object_shift(rows, CONFIRM_SEED))}
 
 
-def lora_readings(rows, lm, cache: Path = CACHE, progress: bool = True) -> dict[tuple[str, str], dict]:
+def readings_cache(adapter: Path) -> Path:
+    """The readings cache of an adapter, named by a digest of its weights: another adapter (or the
+    shipped one replaced) never reads the readings of this one."""
+    import hashlib
+    digest = hashlib.sha256((Path(adapter) / "adapter_model.safetensors").read_bytes()).hexdigest()[:10]
+    return RESULTS / f"language-lora-readings-{digest}.jsonl"
+
+
+def lora_readings(rows, lm, cache: Path, progress: bool = True) -> dict[tuple[str, str], dict]:
     """The model's reading of every row, by (instruction with spacing folded, room type): fields,
     per-field log-probabilities and seconds. Readings are appended to the JSONL `cache` as they are made
     and read back from it, so a later run (another combination policy, more sets) decodes only new rows."""
@@ -256,8 +280,8 @@ def main(args) -> int:
         sets = {k: v[::max(1, len(v) // args.per_set)][:args.per_set] for k, v in sets.items()}
     review = reviewed_rows()
     all_rows = [r for rows in sets.values() for r in rows] + [r for r, _ in review]
-    lm = LoraParser()
-    readings = lora_readings(all_rows, lm)
+    lm = LoraParser(adapter=args.adapter)  # None: the shipped adapter
+    readings = lora_readings(all_rows, lm, readings_cache(lm.adapter))
     rules = RuleParser()
     combined = {"combined" if p == DEFAULT_POLICY else f"combined {p}": CombinedParser(lm=lm, rules=rules, policy=p)
                 for p in POLICIES}
@@ -308,11 +332,12 @@ def main(args) -> int:
         rows = load_annotations("valid_seen")  # = id_eval, as ALFRED annotations (the training targets' form)
         lines += [""] + compare_decoding(rows[::max(1, len(rows) // args.decoding)][:args.decoding], lm)
     print("\n".join(lines))
-    RESULTS.mkdir(exist_ok=True)
-    (RESULTS / "language.md").write_text("\n".join(lines) + "\n")
-    (RESULTS / "language.json").write_text(json.dumps({"sets": scored, "review": scored_review,
-                                                          "room_type": rooms, "decisions": decided}, indent=1) + "\n")
-    print(f"written: {RESULTS / 'language.md'}, {RESULTS / 'language.json'}")
+    out = Path(args.out) if args.out else RESULTS
+    out.mkdir(parents=True, exist_ok=True)
+    (out / "language.md").write_text("\n".join(lines) + "\n")
+    (out / "language.json").write_text(json.dumps({"adapter": str(lm.adapter), "sets": scored, "review": scored_review,
+                                                   "room_type": rooms, "decisions": decided}, indent=1) + "\n")
+    print(f"written: {out / 'language.md'}, {out / 'language.json'}")
     return 0
 
 

@@ -32,6 +32,8 @@ DATA_DIR = "data/language"
 SEED = 10
 # A type is "rare" as an ALFRED target when train uses it as the target at most this often (0.5 %).
 RARE_TARGET_MAX = 60
+# Seed of the split of the rare targets into a training pool and a held-out pool (`rare_target_pools`).
+POOL_SEED = 21
 
 
 @dataclass(frozen=True)
@@ -178,9 +180,20 @@ def rare_targets() -> dict[str, int]:
             and counts.get(t, 0) <= RARE_TARGET_MAX}
 
 
-def sensible_targets(row: LabelledInstruction) -> list[str]:
-    """Rare targets that physically fit the row's task: seen on (or ALFRED-valid for) the receptacle
-    in iTHOR, fridge- or microwave-valid for cool / heat tasks, sliceable when sliced."""
+def rare_target_pools(seed: int = POOL_SEED) -> tuple[tuple[str, ...], tuple[str, ...]]:
+    """`rare_targets()` split at random (seeded) into halves: (training pool, held-out pool). Augmented
+    training data may use only the first, so the OS rows whose new target is held out show whether a
+    model copies the named object or has memorised the types it was shown."""
+    types = sorted(rare_targets())
+    random.Random(seed).shuffle(types)
+    half = len(types) // 2
+    return tuple(sorted(types[:half])), tuple(sorted(types[half:]))
+
+
+def sensible_targets(row: LabelledInstruction, pool: tuple[str, ...] | None = None) -> list[str]:
+    """Rare targets (only those in `pool` when given) that physically fit the row's task: seen on (or
+    ALFRED-valid for) the receptacle in iTHOR, fridge- or microwave-valid for cool / heat tasks,
+    sliceable when sliced."""
     from models.world import catalogue
     from models.world.catalogue import load_json
     cat, valid = catalogue(), load_json("alfred_constants.json")["VAL_RECEPTACLE_OBJECTS"]
@@ -191,6 +204,8 @@ def sensible_targets(row: LabelledInstruction) -> list[str]:
 
     out = []
     for t in rare_targets():
+        if pool is not None and t not in pool:
+            continue
         ok = not (row.label.sliced and not cat[t].flags.get("sliceable"))
         for _, rel, other in row.label.relations:
             if rel in ("placed_at", "cooled_in", "heated_in"):
@@ -215,14 +230,16 @@ def swap_target(row: LabelledInstruction, new: str, rng: random.Random) -> str |
     return text if hit else None
 
 
-def object_shift(rows: list[LabelledInstruction], seed: int = SEED) -> list[LabelledInstruction]:
-    """Rows whose named target is swapped for a sensible rare type; kept only when the label re-derived
-    from the new text is the original label with the target renamed (and the old type no longer named)."""
+def object_shift(rows: list[LabelledInstruction], seed: int = SEED,
+                 pool: tuple[str, ...] | None = None) -> list[LabelledInstruction]:
+    """Rows whose named target is swapped for a sensible rare type (from `pool` when given); kept only
+    when the label re-derived from the new text is the original label with the target renamed (and the
+    old type no longer named)."""
     rng = random.Random(seed)
     by_source = _annotations_by_source()
     out = []
     for row in rows:
-        options = sensible_targets(row)
+        options = sensible_targets(row, pool)
         if not options or "key" not in row.roles()[row.label.target]:
             continue
         new = rng.choice(options)

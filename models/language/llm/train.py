@@ -3,7 +3,9 @@
 Any Hugging Face causal LM folder works as the base (`--base /path/to/falcon-7b` on a GPU machine);
 the default is the bundled SmolLM2-135M-Instruct. Seeded (data order, room-type dropout, LoRA init),
 resumable (the last checkpoint holds adapter, optimiser, scheduler and RNG states), logged to
-`loss.csv` and `loss.png` in the output folder. The loss is on the answer tokens only.
+`loss.csv` and `loss.png` in the output folder. The loss is on the answer tokens only. With
+`init_adapter` the run continues training a trained adapter (its LoRA settings, not the config's), and
+the adapters it writes keep that adapter's metadata under "init" (which rows it had trained on).
 """
 
 from __future__ import annotations
@@ -20,6 +22,7 @@ from models.language.llm.base_model import SMOLLM2, load_base
 from models.language.llm.graph_text import GraphFields
 
 META_FILE = "h3ds_meta.json"
+INIT_META = "init_meta.json"  # in a run folder: the metadata of the adapter the run started from
 
 
 @dataclass
@@ -42,6 +45,7 @@ class TrainConfig:
     val_size: int = 48
     limit: int | None = None  # use only the first N training examples (tests)
     threads: int | None = None
+    init_adapter: str | None = None  # continue training this adapter folder (LoRA settings taken from it)
 
 
 @dataclass(frozen=True)
@@ -91,6 +95,23 @@ def lora_model(model, cfg: TrainConfig):
     config = LoraConfig(r=cfg.lora_r, lora_alpha=cfg.lora_alpha, lora_dropout=cfg.lora_dropout,
                         target_modules=linear_names(model), layers_to_transform=layers, task_type="CAUSAL_LM")
     return get_peft_model(model, config)
+
+
+def from_adapter(model, adapter: str):
+    """The base with a trained adapter, trainable, its LoRA weights in float32 (shipped adapters are
+    float16)."""
+    from peft import PeftModel
+    model = PeftModel.from_pretrained(model, adapter, is_trainable=True)
+    for p in model.parameters():
+        if p.requires_grad:
+            p.data = p.data.float()
+    return model
+
+
+def _init_meta(run: Path) -> dict:
+    """{"init": metadata of the adapter the run started from}, or {} for a run from scratch."""
+    path = Path(run) / INIT_META
+    return {"init": json.loads(path.read_text())} if path.exists() else {}
 
 
 def _plot(rows: list[dict], path: Path) -> None:
@@ -162,7 +183,8 @@ def export_checkpoint(run: Path, dest: Path) -> Path:
     (dest / META_FILE).write_text(json.dumps({"config": config, "steps": state["step"],
                                               "held_out_loss": last.get("val_loss"),
                                               "held_out_exact": last.get("val_exact"),
-                                              "seconds": state["log"][-1]["seconds"]}, indent=2) + "\n")
+                                              "seconds": state["log"][-1]["seconds"], **_init_meta(run)},
+                                             indent=2) + "\n")
     return dest
 
 
@@ -194,7 +216,13 @@ def train(cfg: TrainConfig, train_rows: list[Example], progress: bool = True) ->
 
     model, tok = load_base(cfg.base)
     model.config.use_cache = False
-    model = lora_model(model, cfg)
+    if cfg.init_adapter:
+        init_meta = Path(cfg.init_adapter) / META_FILE
+        if init_meta.exists():
+            (out / INIT_META).write_text(init_meta.read_text())
+        model = from_adapter(model, cfg.init_adapter)
+    else:
+        model = lora_model(model, cfg)
     grammar = Grammar(tok)
     steps_per_epoch = math.ceil(len(rows) / cfg.batch_size)
     if not rows or not val:
@@ -268,5 +296,5 @@ def train(cfg: TrainConfig, train_rows: list[Example], progress: bool = True) ->
     last = next((r for r in reversed(log_rows) if r["val_loss"] != ""), {})
     save_adapter(model, final, cfg, {"steps": step, "train_examples": len(rows), "held_out": len(val),
                                      "held_out_loss": last.get("val_loss"), "held_out_exact": last.get("val_exact"),
-                                     "seconds": log_rows[-1]["seconds"] if log_rows else 0})
+                                     "seconds": log_rows[-1]["seconds"] if log_rows else 0, **_init_meta(out)})
     return final
