@@ -118,8 +118,7 @@ def test_latency_counts_the_model_only_where_it_is_asked():
 
 
 def test_augmented_rows_keep_the_policy_and_confirmation_rows_unseen_and_use_only_the_training_pool():
-    from app.bench.language import (POLICY_ROWS, confirmation_rows, kept_apart_texts, readings_cache,
-                                    trained_rows)
+    from app.bench.language import POLICY_ROWS, confirmation_rows, kept_apart_texts, trained_rows
     from models.datasets.language_sets import object_shift, rare_target_pools, text_key
     from models.language.llm.data import AUGMENT_SEED, augmented_examples
     trained, kept_apart = trained_rows(), kept_apart_texts()

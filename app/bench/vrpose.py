@@ -126,7 +126,7 @@ def evaluate(scene: Scene, graph) -> dict:
 def main(args) -> int:
     n = args.n
     n_slow = min(args.n_slow, n)
-    solvers = [s for s in (args.solvers or ",".join(dict.fromkeys([*EVERY_SCENE, "z3", "milp"]))).split(",") if s]
+    solvers = [s for s in args.solvers.split(",") if s] if args.solvers else list(dict.fromkeys([*EVERY_SCENE, "z3", "milp"]))
     from models.datasets.constraint_sets import DATASETS
     pipelines = {"usual": Pipeline(), "crowded": Pipeline(planner=RoomPlanner(DATASETS["unseen_a"].settings))}
     rows = []

@@ -32,24 +32,26 @@ from models.placement.polish import Move, Standing, polish
 ROUNDS, NEAR, CHECKS = 3, 4, 40  # restore_access
 
 
-def _best_move(ep: Episode, now: Standing, oid: str):
-    """(task objects out of reach, energy, new pose, step) of the best pose for `oid`, or None if no pose
-    reaches more of them than now."""
+def _best_move(ep: Episode, now: Standing, oid: str) -> Move | None:
+    """The move of `oid` to its pose that leaves the fewest task objects out of reach (of its `CHECKS` legal
+    poses of lowest energy, the first such), or None if no pose reaches more of them than now."""
     obj = ep.problem.plan.object(oid)
     others = [p for p in ep.placed if p.id != oid]
     cands, body = ep.scorer.bodies(obj)
     legal = legal_poses(ep, obj, others, cands, SweptBoxes(body), relax=False)
     if not len(legal):
         return None
-    terms = now.setup.without(oid).score(obj, cands[legal])
+    setup = now.setup.without(oid)
+    terms = setup.score(obj, cands[legal])
     base = now.reach.blocked(others)
     best = None
     for k in np.argsort(terms["total"], kind="stable")[:CHECKS]:
         pose = ep.scorer.place(obj, *(float(v) for v in cands[legal[k]]))
         left = now.reach.out_with(others, base, pose)
-        if left < now.out and (best is None or left < best[0]):
+        if left < now.out and (best is None or left < best.out):
             step = move_step(oid, pose, cands, legal, int(k), terms, "clearing the robot's way to the task objects")
-            best = (left, float(terms["total"][k]), pose, step)
+            best = Move([pose if p.id == oid else p for p in ep.placed], [step], float(terms["total"][k]), left,
+                        lambda pose=pose: setup.after(pose))
             if left == 0:
                 break
     return best
@@ -117,11 +119,9 @@ def restore_access(ep: Episode, observer: StepObserver | None = None) -> list[st
         moves = [m for m in (_best_move(ep, now, oid) for oid in movable) if m]
         if not moves:
             break
-        left, energy, pose, step = min(moves, key=lambda m: m[:2])
-        setup = now.setup.without(pose.id)
-        now.moved(Move([pose if p.id == pose.id else p for p in ep.placed], [step], energy, left,
-                       lambda: setup.after(pose)))
-        moved.append(pose.id)
+        move = min(moves, key=lambda m: (m.out, m.energy))
+        now.moved(move)
+        moved.append(move.steps[0].object_id)
         if observer is not None:
-            observer(step)
+            observer(move.steps[0])
     return moved

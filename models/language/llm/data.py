@@ -9,6 +9,7 @@
 
 from __future__ import annotations
 
+from models.datasets.language_sets import text_key
 from models.language.alfred import load_annotations
 from models.language.llm.graph_text import fields_of
 from models.language.llm.train import Example
@@ -16,14 +17,10 @@ from models.language.llm.train import Example
 AUGMENT_SEED = 21  # of the augmentation's TS / OS rewrites: not the evaluation sets' (10), confirmation (11) or dev (13)
 
 
-def _key(text: str) -> str:
-    return " ".join(text.lower().split())
-
-
 def training_examples() -> list[Example]:
-    held_out = {_key(a.instruction) for s in ("valid_seen", "valid_unseen") for a in load_annotations(s)}
+    held_out = {text_key(a.instruction) for s in ("valid_seen", "valid_unseen") for a in load_annotations(s)}
     return [Example(a.instruction, a.room_type, fields_of(a)) for a in load_annotations("train")
-            if _key(a.instruction) not in held_out]
+            if text_key(a.instruction) not in held_out]
 
 
 def augmented_examples(trained: list, kept_apart: set[str], seed: int = AUGMENT_SEED) -> list[Example]:
@@ -34,8 +31,8 @@ def augmented_examples(trained: list, kept_apart: set[str], seed: int = AUGMENT_
     is left out, and so are the rewrites of such a row."""
     from models.language.combined import rule_fields  # the compact fields of any labelled graph
     from models.datasets.language_sets import object_shift, rare_target_pools, text_shift
-    rows = [r for r in trained if _key(r.instruction) not in kept_apart]
+    rows = [r for r in trained if text_key(r.instruction) not in kept_apart]
     pool, _ = rare_target_pools()
     out = rows + object_shift(rows, seed, pool) + text_shift(rows, seed)
     return [Example(r.instruction, r.room_type, rule_fields(r.label)) for r in out
-            if _key(r.instruction) not in kept_apart]
+            if text_key(r.instruction) not in kept_apart]
