@@ -38,30 +38,45 @@ class Parser(argparse.ArgumentParser):
 SOLVER_HELP = f"placer: {DEFAULT_SOLVER} (default); one of {', '.join(sorted(SOLVERS))}"
 
 
-def _plan_error(path: str, err: Exception) -> BadInput:
-    if isinstance(err, ValidationError):
-        first = err.errors()[0]
-        where = ".".join(str(p) for p in first["loc"]) or "plan"
-        return BadInput(f"{path}: {where}: {first['msg']}")
-    return BadInput(f"{path}: {err}")
+def _value_error(path: str, err: ValidationError, what: str) -> BadInput:
+    first = err.errors()[0]
+    where = ".".join(str(p) for p in first["loc"]) or what
+    return BadInput(f"{path}: {where}: {first['msg']}")
 
 
-def load_plan(path: str):
-    from models.values import ConstraintPlan
+def _load_value(path: str, model, what: str):
+    """A JSON file read into `model` (a pydantic value type); each problem is a BadInput naming the file."""
     try:
         raw = Path(path).read_bytes()
     except OSError as e:
-        raise BadInput(f"{path}: cannot read the plan ({e.strerror})") from e
+        raise BadInput(f"{path}: cannot read the {what} ({e.strerror})") from e
     try:
         data = json.loads(raw.decode("utf-8"))
     except (UnicodeDecodeError, json.JSONDecodeError) as e:
         raise BadInput(f"{path}: not valid JSON ({e})") from e
     if not isinstance(data, dict):
-        raise BadInput(f"{path}: a plan must be a JSON object, not {type(data).__name__}")
+        raise BadInput(f"{path}: a {what} must be a JSON object, not {type(data).__name__}")
     try:
-        return ConstraintPlan.model_validate(data)
+        return model.model_validate(data)
     except ValidationError as e:
-        raise _plan_error(path, e) from e
+        raise _value_error(path, e, what) from e
+
+
+def load_plan(path: str):
+    from models.values import ConstraintPlan
+    return _load_value(path, ConstraintPlan, "plan")
+
+
+def load_kept(path: str, plan) -> dict[str, tuple[float, float, float]]:
+    """The poses of a layout file's placements, to keep when placing `plan` (`h3ds place --keep`)."""
+    from app.pipeline import pose_of
+    from models.values import Layout
+    layout = _load_value(path, Layout, "layout")
+    ids = {o.id for o in plan.objects}
+    strangers = [p.id for p in layout.placements if p.id not in ids]
+    if strangers:
+        raise BadInput(f"{path}: not objects of plan {plan.id}: {', '.join(strangers)}")
+    return {p.id: pose_of(p) for p in layout.placements}
 
 
 def _parser_of(args):
@@ -107,8 +122,12 @@ def cmd_place(args) -> int:
         raise BadInput("several plans need --out-dir DIR")
     if args.steps and (len(plans) > 1 or (args.steps == "-" and not args.out)):
         raise BadInput("--steps takes one plan; --steps - (steps on stdout) needs --out LAYOUT.json")
+    if args.keep and len(plans) > 1:
+        raise BadInput("--keep takes one plan")
     for plan in plans:
-        layout = _place_stepwise(plan, args) if args.steps else pipeline.place(plan, seed=args.seed, solver=args.solver)
+        keep = load_kept(args.keep, plan) if args.keep else None
+        layout = _place_stepwise(plan, args, keep) if args.steps else \
+            pipeline.place(plan, seed=args.seed, solver=args.solver, keep=keep)
         if args.out_dir:
             Path(args.out_dir).mkdir(parents=True, exist_ok=True)
             (Path(args.out_dir) / f"{plan.id}.json").write_text(dump(layout) + "\n")
@@ -119,11 +138,12 @@ def cmd_place(args) -> int:
     return 0
 
 
-def _place_stepwise(plan, args):
-    """Place `plan`, writing each step as a JSON line to `args.steps` (a path, or - for stdout) as it is made."""
+def _place_stepwise(plan, args, keep):
+    """Place `plan` (`keep`: poses kept), writing each step as a JSON line to `args.steps` (a path, or - for
+    stdout) as it is made."""
     from models.placement import get_solver
     from models.placement.stepping import Stepping, step_record
-    stepping = Stepping(get_solver(args.solver), plan, seed=args.seed)
+    stepping = Stepping(get_solver(args.solver), plan, seed=args.seed, fixed=keep)
     with (nullcontext(sys.stdout) if args.steps == "-" else open(args.steps, "w")) as out:
         for k, step in enumerate(stepping, 1):
             print(json.dumps(step_record(step, k)), file=out, flush=True)
@@ -354,6 +374,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--out-dir", metavar="DIR", help="for several plans: DIR/<plan id>.json each")
     p.add_argument("--steps", metavar="STEPS.jsonl", help="one plan: each placement step as a JSON line, written as "
                    "the placer goes (pose, energy terms, a repair's reason, the best-scored candidates); - for stdout")
+    p.add_argument("--keep", metavar="LAYOUT.json", help="one plan: keep the poses of this layout's placements "
+                   "(e.g. a layout edited by hand, with the objects to place again deleted) and place the rest "
+                   "around them")
     p.set_defaults(run=cmd_place)
 
     p = sub.add_parser("generate", help="the whole pipeline -> task_graph, plan, layout, house JSON and GLB")
@@ -514,7 +537,7 @@ def main(argv: list[str] | None = None) -> int:
         print(f"h3ds: error: {e}", file=sys.stderr)
         return 2
     except ValidationError as e:
-        print(f"h3ds: error: {_plan_error('input', e)}", file=sys.stderr)
+        print(f"h3ds: error: {_value_error('input', e, 'input')}", file=sys.stderr)
         return 2
     except BrokenPipeError:
         return 0

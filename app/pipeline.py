@@ -9,11 +9,14 @@ is a typed value, so any of them can be saved, edited and fed back in.
 from __future__ import annotations
 
 import json
+from collections.abc import Collection
 from dataclasses import dataclass
 from pathlib import Path
 
+from models.geometry import Footprint, overlap_area
 from models.language import InstructionParser
 from models.language.combined import make_parser
+from models.metrics.placement import AREA_TOL
 from models.placement import PlacementProblem, StepObserver, get_solver
 from models.placement.base import Fixed
 from models.planning import ConstraintWriter, RoomPlanner
@@ -83,6 +86,15 @@ class Pipeline:
         return Generation(gen.task_graph, gen.room_plan, plan, layout,
                           assemble_scene(gen.room_plan, layout, gen.task_graph, seed, constraints))
 
+    def replace_around(self, gen: Generation, moved: Collection[str], seed: int = 0, solver: str | None = None,
+                       observer: StepObserver | None = None) -> Generation:
+        """Re-plan from a designer's moves: the `moved` objects stay where the designer put them and the
+        placer places the others again around them, from the first moved object's point in its order on
+        (see `kept_around_moves`)."""
+        layout = self.place(gen.plan, seed, solver, observer, keep=kept_around_moves(gen, moved))
+        return Generation(gen.task_graph, gen.room_plan, gen.plan, layout,
+                          assemble_scene(gen.room_plan, layout, gen.task_graph, seed, gen.plan.constraints))
+
     def move(self, gen: Generation, object_id: str, x: float, z: float, rotation: float, seed: int = 0) -> Generation:
         """A designer's drag: one object at a new pose, everything else as it was."""
         placements = [p.model_copy(update={"x": round(x, 4), "z": round(z, 4), "rotation": rotation % 360})
@@ -104,6 +116,27 @@ def kept_before_edit(gen: Generation, edited: ConstraintPlan) -> Fixed:
         if p is not None:
             keep[o.id] = (p.x, p.z, p.rotation)
     return keep
+
+
+def kept_around_moves(gen: Generation, moved: Collection[str]) -> Fixed:
+    """The poses a re-plan around a designer's moves keeps: the `moved` objects' own, and those of the
+    objects the placer puts before the first moved one that do not collide with a moved one (as the
+    metrics count collisions); the rest is placed again."""
+    moved = [m for m in dict.fromkeys(moved) if gen.layout.placement(m) is not None]
+    if not moved:
+        raise ValueError("nothing to re-place around: no moved object of this scene is placed")
+    order = [o.id for o in PlacementProblem.from_plan(gen.plan).order]
+    feet = {p.id: Footprint(p.x, p.z, p.size.x, p.size.z, p.rotation) for p in gen.layout.placements}
+    keep: Fixed = {m: pose_of(gen.layout.placement(m)) for m in moved}
+    for oid in order[:min(order.index(m) for m in moved)]:
+        if oid in feet and all(overlap_area(feet[oid], feet[m]) <= AREA_TOL for m in moved):
+            keep.setdefault(oid, pose_of(gen.layout.placement(oid)))
+    return keep
+
+
+def pose_of(p: Placement) -> tuple[float, float, float]:
+    """(x, z, rotation) of a placement: what a kept pose is."""
+    return p.x, p.z, p.rotation
 
 
 def generation_of(scene: Scene) -> Generation:

@@ -21,7 +21,7 @@ import numpy as np
 import viser
 from viser import _messages
 
-from app.pipeline import Generation, Pipeline, generation_of, kept_before_edit
+from app.pipeline import Generation, Pipeline, generation_of, kept_before_edit, pose_of
 from frontend import camera
 from frontend.apartment import ApartmentMode
 from frontend.checks import Finding, run_checks, summary
@@ -66,6 +66,7 @@ class Values:
     steps: tuple[PlacementStep, ...] = ()
     edits: tuple[Edit, ...] = ()
     reference: SceneMetrics | None = None  # the placer's result the designer started from
+    moved: tuple[tuple[str, tuple[float, float, float]], ...] = ()  # the designer's moves: id, pose put at
 
 
 @dataclass
@@ -132,6 +133,8 @@ class StudioSession:
             self.pose_z = gui.add_number("z (m)", 0.0, step=0.05)
             self.pose_rot = gui.add_number("Rotation (°)", 0.0, step=90)
             gui.add_button("Apply pose").on_click(lambda _: self.apply_pose())
+            gui.add_button("Re-place the rest", hint="Keep the objects you moved where you put them and place "
+                           "the others again around them").on_click(lambda _: self.replace_rest())
             turns = gui.add_button_group("Turn", ("-90°", "+90°", "Deselect"))
             turns.on_click(lambda e: self.pick(None) if e.target.value == "Deselect"
                            else self.turn(90 if e.target.value == "+90°" else -90))
@@ -300,9 +303,9 @@ class StudioSession:
                 self.history.record(record, self.state.values)
             self.state.playing = False
             self.state.seed, self.state.solver = int(self.seed.value), self.solver.value
-            edits = () if fresh else self.state.edits
+            edits, moved = ((), ()) if fresh else (self.state.edits, self.state.values.moved)
             reference = self.state.values.reference if keep_reference else None
-            self.state.values = Values(gen, tuple(steps), edits, reference)
+            self.state.values = Values(gen, tuple(steps), edits, reference, moved)
             if fresh:
                 self.state.scene_id = None
                 self.history.clear()
@@ -614,7 +617,9 @@ class StudioSession:
             self.history.record(f"move {object_id}", self.state.values)
             edit = Edit("move", object_id, [before.x, before.z, before.rotation],
                         [round(x, 3), round(z, 3), rotation % 360])
-            self.state.values = replace(self.state.values, gen=new, edits=self.state.edits + (edit,))
+            put = new.layout.placement(object_id)
+            moved = tuple(m for m in self.state.values.moved if m[0] != object_id) + ((object_id, pose_of(put)),)
+            self.state.values = replace(self.state.values, gen=new, edits=self.state.edits + (edit,), moved=moved)
         obj = next(o for o in new.scene.objects if o.id == object_id)
         for o in [obj, *obj.children]:
             self.view.move(o)
@@ -626,6 +631,37 @@ class StudioSession:
         self.say(f"Moved `{object_id}` to ({x:.2f}, {z:.2f}) facing {rotation % 360:.0f}° ({how}). "
                  + (f"⚠ {len(findings)} check(s) fail." if findings else "All checks pass.")
                  + f" {len(self.state.edits)} designer edit(s); **Undo** reverts.")
+
+    def still_moved(self) -> list[str]:
+        """The objects the designer moved that are still where they were put (a re-plan may have moved them)."""
+        gen = self.state.gen
+        return [oid for oid, pose in self.state.values.moved
+                if (p := gen.layout.placement(oid)) is not None and pose_of(p) == pose]
+
+    def replace_rest(self) -> None:
+        """Re-plan from the designer's moves (Pipeline.replace_around): undoable, stored as an edit."""
+        gen = self.state.gen
+        if gen is None or self.apartment.current is not None:
+            self.say("**Error:** Re-placing around moved objects works on a single room; generate one first.")
+            return
+        moved = self.still_moved()
+        if not moved:
+            self.say("Move an object first (drag it, type a pose or turn it): **Re-place the rest** keeps the "
+                     "objects you moved where you put them and places the others again around them.")
+            return
+        with self._busy("Re-placing the rest around your moves") as free:
+            if not free:
+                return
+            if not self._run(lambda obs: self.pipeline.replace_around(gen, moved, self.state.seed, self.state.solver,
+                                                                      obs),
+                             fresh=False, record="re-place the rest", keep_reference=True):
+                return
+            self.state.values = replace(self.state.values, edits=self.state.edits + (
+                Edit("re-place", ", ".join(moved), None, None),))
+        again = [p.id for p in self.state.gen.layout.placements
+                 if (q := gen.layout.placement(p.id)) is None or pose_of(q) != pose_of(p)]
+        self.say(f"{self.status.content}\n\nRe-placed around {', '.join(f'`{m}`' for m in moved)} (kept where you "
+                 f"put them); placed again: {', '.join(again) or 'nothing'}.")
 
     # ---- undo / redo ------------------------------------------------------------------------------
 

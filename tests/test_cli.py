@@ -62,6 +62,28 @@ def test_place_one_and_many(tmp_path, capsys):
     assert code == 0 and sorted(p.name for p in (tmp_path / "many").iterdir()) == ["scene-0.json", "second.json"]
 
 
+def test_place_keeps_the_poses_of_a_hand_edited_layout(tmp_path, capsys):
+    """--keep: a layout edited by hand (one object moved, the ones to place again deleted) is kept as it is."""
+    run(["generate", "Put a chilled bread on the counter", "--room-type", "kitchen", "--out", str(tmp_path / "g")],
+        capsys)
+    layout = json.loads((tmp_path / "g" / "layout.json").read_text())
+    kept = layout["placements"][:2]
+    kept[0] = {**kept[0], "x": round(kept[0]["x"] + 0.05, 4)}
+    (tmp_path / "edited.json").write_text(json.dumps({**layout, "placements": kept}))
+    code, out, _ = run(["place", str(tmp_path / "g" / "plan.json"), "--keep", str(tmp_path / "edited.json")], capsys)
+    again = {p["id"]: p for p in json.loads(out)["placements"]}
+    assert code == 0 and len(again) == len(layout["placements"])
+    for p in kept:
+        assert (again[p["id"]]["x"], again[p["id"]]["z"], again[p["id"]]["rotation"]) == (p["x"], p["z"], p["rotation"])
+    stranger = {**layout, "placements": [{**kept[0], "id": "sofa-9"}]}
+    (tmp_path / "stranger.json").write_text(json.dumps(stranger))
+    code, _, err = run(["place", str(tmp_path / "g" / "plan.json"), "--keep", str(tmp_path / "stranger.json")], capsys)
+    assert code == 2 and "not objects of plan scene-0: sofa-9" in err
+    (tmp_path / "bad.json").write_text('{"placements": 3}')
+    code, _, err = run(["place", str(tmp_path / "g" / "plan.json"), "--keep", str(tmp_path / "bad.json")], capsys)
+    assert code == 2 and "bad.json" in err and err.count("\n") == 1
+
+
 BAD_PLANS = {
     "not-json.json": (b"{ this is not json", "not valid JSON"),
     "binary.json": (bytes(range(256)), "not valid JSON"),

@@ -108,6 +108,36 @@ def test_an_edit_replans_from_the_edited_point(pipeline, solver):
         assert p is not None and abs(p.x - x) < 0.01 and abs(p.z - z) < 0.01 and p.rotation == r
 
 
+@pytest.mark.parametrize("solver", ["dfs", "greedy", "plan2place"])
+def test_a_drag_onto_another_object_replans_the_rest_around_it(pipeline, solver):
+    """A designer drags the third object of the placing order onto the first: the dragged one stays where
+    it was put, the second (clear of it) keeps its pose, the first is placed again and nothing collides."""
+    from app.pipeline import kept_around_moves, pose_of
+    from models.placement import PlacementProblem
+    gen = pipeline.generate("Put a chilled bread on the counter", "kitchen", seed=0, solver=solver)
+    first, second, dragged = (o.id for o in PlacementProblem.from_plan(gen.plan).order[:3])
+    onto = gen.layout.placement(first)
+    moved = pipeline.move(gen, dragged, onto.x, onto.z, 0.0)
+    assert scene_metrics(moved.plan, moved.layout).collisions > 0
+    kept = kept_around_moves(moved, [dragged])
+    assert set(kept) == {dragged, second}
+    again = pipeline.replace_around(moved, [dragged], seed=0, solver=solver)
+    assert pose_of(again.layout.placement(dragged)) == pose_of(moved.layout.placement(dragged))
+    assert pose_of(again.layout.placement(second)) == pose_of(gen.layout.placement(second))
+    assert again.layout.placement(first) is not None and (again.layout.placement(first).x,
+                                                          again.layout.placement(first).z) != (onto.x, onto.z)
+    assert scene_metrics(again.plan, again.layout).collisions == 0 and not again.layout.unplaced
+
+
+def test_replacing_around_nothing_or_a_stranger_is_refused(pipeline):
+    from app.pipeline import kept_around_moves
+    gen = pipeline.generate("Put a chilled bread on the counter", "kitchen", seed=0, solver="greedy")
+    with pytest.raises(ValueError, match="nothing to re-place around"):
+        kept_around_moves(gen, [])
+    with pytest.raises(ValueError, match="nothing to re-place around"):
+        kept_around_moves(gen, ["sofa-9"])
+
+
 def test_one_per_object_budget_rule_for_every_solver():
     from models.placement.problem import PER_OBJECT_BUDGET_S, time_budget
     p = plan(KITCHEN, KITCHEN_TEXT)

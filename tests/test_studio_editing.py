@@ -127,6 +127,39 @@ def test_drag_into_collision_warns_asks_before_saving_and_undo_restores(browser,
     assert dialogs == ["beforeunload"]
 
 
+def test_typed_pose_onto_another_object_then_replace_the_rest_around_it(browser, studio):
+    """The designer puts the fridge where the counter stands (typed pose), then presses Re-place the rest:
+    the fridge stays where it was put, the others are placed around it without collisions; undo restores."""
+    before = set(studio.sessions)
+    page = open_studio(browser, studio)
+    session = session_of(studio, before)
+    generate(page, session, "Put a chilled bread on the counter", "kitchen")
+    page.get_by_role("button", name="Re-place the rest").wait_for(state="hidden", timeout=WAIT)  # nothing picked
+    counter = session.state.gen.layout.placement("countertop-0")
+    o = next(o for o in session.state.gen.scene.objects if o.id == "fridge-0")
+    page.mouse.click(*screen_xy(session, (o.x, o.y, -o.z)))
+    wait_until(page, lambda: session.selected == "fridge-0", "the picked fridge")
+    page.get_by_role("button", name="Re-place the rest").click()  # nothing moved yet: it says what to do
+    page.get_by_text(re.compile("Move an object first")).wait_for(timeout=WAIT)
+    enter(page, "x (m)", round(counter.x, 2), session.pose_x)
+    enter(page, "z (m)", round(counter.z, 2), session.pose_z)
+    page.get_by_role("button", name="Apply pose").click()
+    page.get_by_text(re.compile(r"fridge-0.* collides with")).first.wait_for(timeout=WAIT)
+    put = session.state.gen.layout.placement("fridge-0")
+    collided = session.state.gen
+
+    page.get_by_role("button", name="Re-place the rest").click()
+    page.get_by_text(re.compile(r"Re-placed around fridge-0")).wait_for(timeout=WAIT)
+    now = session.state.gen.layout.placement("fridge-0")
+    assert (now.x, now.z, now.rotation) == (put.x, put.z, put.rotation)
+    wait_until(page, lambda: not any(f.kind == "collision" for f in session.state.findings), "no collision")
+    assert not session.state.gen.layout.unplaced
+    assert session.state.edits[-1].kind == "re-place" and session.state.edits[-1].target == "fridge-0"
+    page.get_by_role("button", name="Undo").click()
+    page.get_by_text(re.compile("Undid: re-place the rest")).wait_for(timeout=WAIT)
+    assert session.state.gen is collided
+
+
 def test_downloads_are_the_selected_version(browser, studio):
     before = set(studio.sessions)
     page = open_studio(browser, studio)
