@@ -162,8 +162,11 @@ def main(args) -> int:
                 onto = moved.layout.placement(name)
                 session.move_to(name, onto.x, onto.z, onto.rotation, how="bench")
                 session.pick(name)
+                button = page.get_by_role("button", name="Re-place the rest")
+                button.wait_for(state="visible", timeout=30_000)
+                page.wait_for_timeout(300)  # the picked object's panel has opened and the move's checks are shown
                 t0 = time.perf_counter()
-                page.get_by_role("button", name="Re-place the rest").click()
+                button.click()
                 page.get_by_text(re.compile(rf"Re-placed around {name}|Error")).wait_for(timeout=60_000)
                 around.append(time.perf_counter() - t0)
             one_scene_rss = rss_mb()
