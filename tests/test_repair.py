@@ -74,3 +74,25 @@ def test_an_object_left_out_is_placed_after_the_objects_in_its_way_are_placed_ag
     fixed = {p.id: (p.x, p.z, p.rotation) for p in _finished(plan).placed}
     again = _finished(plan, fixed)
     assert make_room(again) == [] and set(again.failed) == left_out
+
+
+def test_a_blocker_far_from_the_walled_off_object_is_the_one_moved():
+    """A shelf standing across the room walls off the fridge by the west wall; the stools around the fridge
+    are nearer to it but block nothing: the shelf is the object moved, and the fridge is reached again."""
+    from models.placement.polish import Standing
+    from models.placement.repair import _suspects
+    from models.values import ConstraintPlan
+    objects = [("fridge-0", "Fridge", 0.7, 0.7, "inference", (0.45, 1.5, 90.0)),
+               ("shelvingunit-0", "ShelvingUnit", 2.9, 0.3, "context", (2.3, 1.5, 90.0))] + \
+        [(f"stool-{k}", "Stool", 0.35, 0.35, "context", pose)
+         for k, pose in enumerate([(0.3, 0.3, 0.0), (0.3, 2.7, 0.0), (1.0, 0.3, 0.0), (1.0, 2.7, 0.0)])]
+    plan = ConstraintPlan.model_validate({
+        "id": "walled", "constraints": "", "room": {"type": "kitchen", "width": 4.0, "depth": 3.0, "doors": [
+            {"wall": "east", "center": 1.5, "width": 0.9}]},
+        "objects": [{"id": i, "type": t, "size": {"x": w, "y": 1, "z": d}, "role": r} for i, t, w, d, r, _ in objects]})
+    ep = _finished(plan, {i: pose for i, *_, pose in objects})
+    ep.problem.fixed = {"fridge-0": ep.problem.fixed["fridge-0"]}  # the others are the placer's to move
+    assert Reach(ep).unreachable(ep.placed) == ["fridge-0"]
+    free = [p for p in ep.placed if p.id != "fridge-0"]
+    assert _suspects(ep, Standing(ep), ["fridge-0"], free)[0] == "shelvingunit-0"
+    assert restore_access(ep) == ["shelvingunit-0"] and not Reach(ep).unreachable(ep.placed)

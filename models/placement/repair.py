@@ -12,7 +12,8 @@ and models.placement.habits.
   later (the energy's navigation term sees only the objects placed so far and is traded against the
   relations). When some task object cannot be reached from the doorway (Key_NAV's test: a free cell of
   its 0.6 m access strip connected to the doorway), up to `ROUNDS` objects are moved one at a time: an
-  unreachable task object or one of the `NEAR` others nearest to them, each tried at its `CHECKS` legal
+  unreachable task object or one of `NEAR` others (first those whose removal alone reaches more task
+  objects, wherever they stand, then the nearest to the unreachable ones), each tried at its `CHECKS` legal
   poses of lowest energy (hard filters as when placing, the others where they are); the move that
   leaves the fewest task objects out of reach, lowest energy first, is kept if it reaches more of them.
 """
@@ -102,6 +103,16 @@ def make_room(ep: Episode, observer: StepObserver | None = None) -> list[str]:
     return done
 
 
+def _suspects(ep: Episode, now: Standing, out: list[str], free: list) -> list[str]:
+    """The movable objects (other than `out`) most likely walling off the task objects `out`: first those
+    whose removal alone lets the robot reach more of them (most first), then the others, nearest first."""
+    pos = {p.id: p for p in ep.placed}
+    others = [p for p in free if p.id not in out]
+    freed = {p.id: len(out) - len(now.reach.unreachable([q for q in ep.placed if q is not p])) for p in others}
+    near = {p.id: min(abs(p.x - pos[o].x) + abs(p.z - pos[o].z) for o in out) for p in others}
+    return sorted(freed, key=lambda i: (-freed[i], near[i]))
+
+
 def restore_access(ep: Episode, observer: StepObserver | None = None) -> list[str]:
     """Move objects of the finished episode `ep` until every placed task object is reachable (or `ROUNDS`
     moves are spent, or no move helps); the ids moved, in order. Each move is a step for the observer."""
@@ -111,11 +122,8 @@ def restore_access(ep: Episode, observer: StepObserver | None = None) -> list[st
         out = now.reach.unreachable(ep.placed)
         if not out:
             break
-        pos = {p.id: p for p in ep.placed}
         free = [p for p in ep.placed if p.id not in ep.problem.fixed]
-        near = sorted((p for p in free if p.id not in out),
-                      key=lambda p: min(abs(p.x - pos[o].x) + abs(p.z - pos[o].z) for o in out))
-        movable = [p.id for p in free if p.id in out] + [p.id for p in near[:NEAR]]
+        movable = [p.id for p in free if p.id in out] + _suspects(ep, now, out, free)[:NEAR]
         moves = [m for m in (_best_move(ep, now, oid) for oid in movable) if m]
         if not moves:
             break
