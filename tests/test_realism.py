@@ -36,3 +36,11 @@ def test_leaving_objects_out_fails_their_checks():
     assert total > 0 and passed == 0
     assert realism(*scored({"bed": (2.0, 3.0, 180)})) < realism(*scored({"bed": (2.0, 3.0, 180),
                                                                          "side": (0.95, 3.7, 180)}))
+
+
+def test_in_a_corner_facing_away_from_either_wall_counts_as_against_the_wall():
+    """Both walls of a corner are touched at distance 0 (up to float noise): facing away from either is
+    the wall habit kept; facing into either wall is not."""
+    corner = {180: (0.7, 3.0), 90: (1.0, 3.3), 0: (0.7, 3.0), 270: (1.0, 3.3)}  # west and north walls touched
+    passed = {r: realism_checks(*scored({"bed": (x, z, r)}))[0] for r, (x, z) in corner.items()}
+    assert passed == {180: 1, 90: 1, 0: 0, 270: 0}

@@ -14,8 +14,8 @@ Fitted, per room type and pooled over all rooms (floor-standing types only, as i
   gap is the largest such gap seen, at least 0.3 m.
 
 The score of a layout: one check per placed object with a wall habit (a wall-standing object must
-touch a wall and face into the room, i.e. its front points away from the nearest wall; a free-standing
-one must not touch a wall), and one per placed object A of a companion pair whose B is in the plan (its
+touch a wall and face into the room, i.e. its front points away from a wall it touches: in a corner,
+from either of the two; a free-standing one must not touch a wall), and one per placed object A of a companion pair whose B is in the plan (its
 nearest B within the allowed gap). Realism = checks passed / checks, or None (n/a) without checks.
 An unplaced object fails all its checks, so leaving objects out never scores better.
 """
@@ -109,14 +109,13 @@ def realism_checks(plan: ConstraintPlan, layout: Layout) -> tuple[int, int]:
             if p is not None:
                 b = box[o.id]
                 dists = {"west": b[0], "south": b[1], "east": room.width - b[2], "north": room.depth - b[3]}
-                nearest = min(dists, key=dists.get)
-                touching = dists[nearest] <= WALL_TOUCH
+                touched = [wall for wall, d in dists.items() if d <= WALL_TOUCH]
                 if share >= HABIT:
                     fx, fz = front(p.rotation)
-                    inward = {"west": fx, "south": fz, "east": -fx, "north": -fz}[nearest] > 0.5
-                    passed += touching and inward
+                    inward = {"west": fx, "south": fz, "east": -fx, "north": -fz}
+                    passed += any(inward[wall] > 0.5 for wall in touched)
                 else:
-                    passed += not touching
+                    passed += not touched
         for target_type in sorted({t.type for t in plan.objects if t.type != o.type}):
             allowed = _lookup(st["companions"], room.type, o.type, target_type)
             if allowed is None:
