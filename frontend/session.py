@@ -658,10 +658,10 @@ class StudioSession:
                 return
             self.state.values = replace(self.state.values, edits=self.state.edits + (
                 Edit("re-place", ", ".join(moved), None, None),))
-        again = [p.id for p in self.state.gen.layout.placements
-                 if (q := gen.layout.placement(p.id)) is None or pose_of(q) != pose_of(p)]
+        shifted = [p.id for p in self.state.gen.layout.placements
+                   if (q := gen.layout.placement(p.id)) is None or pose_of(q) != pose_of(p)]
         self.say(f"{self.status.content}\n\nRe-placed around {', '.join(f'`{m}`' for m in moved)} (kept where you "
-                 f"put them); placed again: {', '.join(again) or 'nothing'}.")
+                 f"put them); the placer moved: {', '.join(shifted) or 'nothing'}.")
 
     # ---- undo / redo ------------------------------------------------------------------------------
 
