@@ -105,13 +105,13 @@ def test_policies_differ_where_both_readings_name_a_type(tiny_adapter):
     assert lm_first.relations[-1] == ("Mug", "placed_at", "DiningTable")
     # a task type the model is sure of replaces the rules' cue-less default; an unsure one does not
     heat = GraphFields("pick_heat_then_place_in_recep", False, "Mug", "SinkBasin")
-    sure = CombinedParser(lm=lm).merge(text, "kitchen", ruled, None, heat, task_confidence=0.95)
-    unsure = CombinedParser(lm=lm).merge(text, "kitchen", ruled, None, heat, task_confidence=0.5)
+    sure = CombinedParser(lm=lm).merge(text, "kitchen", ruled, None, heat, (0.95, 1.0, 1.0, 1.0))
+    unsure = CombinedParser(lm=lm).merge(text, "kitchen", ruled, None, heat, (0.5, 1.0, 1.0, 1.0))
     assert ruled.task_type == "pick_and_place_simple"
     assert sure.task_type == "pick_heat_then_place_in_recep" and unsure.task_type == ruled.task_type
     # but never a cue word the rules read ("chilled" -> cool)
     chilled = "Put a chilled mug in the sink"
-    cool = CombinedParser(lm=lm).merge(chilled, "kitchen", RuleParser().parse(chilled, "kitchen"), None, heat, 0.99)
+    cool = CombinedParser(lm=lm).merge(chilled, "kitchen", RuleParser().parse(chilled, "kitchen"), None, heat, (0.99, 1.0, 1.0, 1.0))
     assert cool.task_type == "pick_cool_then_place_in_recep"
     with pytest.raises(ValueError, match="unknown policy"):
         CombinedParser(lm=lm, policy="vote")
@@ -143,8 +143,8 @@ def test_strict_policy_keeps_the_rules_refusals_and_lamp_alone_and_never_asks_th
     text = "Put the mug from the table in the sink"
     ruled = RuleParser().parse(text, "kitchen")
     heat = GraphFields("pick_heat_then_place_in_recep", False, "Mug", "SinkBasin")
-    assert strict.merge(text, "kitchen", ruled, None, heat, 0.95) == rules_first.merge(text, "kitchen", ruled, None,
-                                                                                         heat, 0.95)
+    assert strict.merge(text, "kitchen", ruled, None, heat, (0.95, 1, 1, 1)) == rules_first.merge(text, "kitchen", ruled, None,
+                                                                                         heat, (0.95, 1, 1, 1))
 
 
 def test_default_parser_is_combined_strict_and_loads_nothing_until_the_first_instruction(monkeypatch):

@@ -194,7 +194,7 @@ def read_all(rows, readings: dict, rules: RuleParser, combined: dict) -> tuple[d
                 merged = ruled
             else:
                 try:
-                    merged = parser.merge(text, room, ruled, failure, fields, math.exp(rec["logprob"][0]))
+                    merged = parser.merge(text, room, ruled, failure, fields, tuple(math.exp(p) for p in rec["logprob"]))
                 except InstructionError:
                     merged = None
             graphs[name][key] = merged
