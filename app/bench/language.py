@@ -32,6 +32,11 @@ POLICY_ROWS = 1000  # id_train rows unseen by the adapter, on which the combinat
 CONFIRM_ROWS = 600
 CONFIRM_SEED = 11
 CONFIRMATION = ("confirm id", "confirm ts", "confirm os")
+# Fresh confirmation sets: drawn after the confirmation sets were spent, for the rules-first-fieldwise
+# decision (app/bench/results/language-policy/decision.md); TS / OS with a seed of their own.
+FRESH_ROWS = 600
+FRESH_SEED = 17
+FRESH = ("fresh id", "fresh ts", "fresh os")
 REVIEW = Path(__file__).parents[2] / "models/data/language/label_review.md"
 
 
@@ -78,25 +83,48 @@ def kept_apart_texts() -> set[str]:
     return {text_key(r.instruction) for r in rows}
 
 
-def confirmation_rows(n: int = CONFIRM_ROWS, adapter: Path | None = None) -> list:
-    """`n` evenly spaced id_train rows kept apart to confirm a choice made on the other sets: rows the
-    shipped adapter never trained on and not among the POLICY_ROWS, one per text, whose text (case and
-    spacing folded) is not that of a trained row, a policy row, a reviewed row (label_review.md) or a
-    row of the room-type classifier's memory (its nearest neighbour would be the sentence itself)."""
+def _apart_rows(taken: set[str], adapter: Path | None = None) -> list:
+    """id_train rows the adapter never trained on, in id_train order, one per text, whose text (case and
+    spacing folded) is neither in `taken` nor that of a trained row."""
     from models.datasets.language_sets import text_key
-    from models.language.room_type import memory_rows
     train, seen, unseen = _adapter_split(adapter)
-    policy = unseen_train_rows(POLICY_ROWS, adapter)
-    taken = {text_key(train[i].instruction) for i in seen}
-    taken |= {text_key(r.instruction) for rows in (policy, memory_rows()) for r in rows}
-    taken |= {text_key(r.instruction) for r, _ in reviewed_rows()}
+    taken = taken | {text_key(train[i].instruction) for i in seen}
     left = []
     for i in unseen:
         key = text_key(train[i].instruction)
         if key not in taken:
             taken.add(key)
             left.append(train[i])
+    return left
+
+
+def _memory_and_review_texts() -> set[str]:
+    """Texts of the room-type classifier's memory (its nearest neighbour would be the sentence itself) and
+    of the label review (read by a person)."""
+    from models.datasets.language_sets import text_key
+    from models.language.room_type import memory_rows
+    return {text_key(r.instruction) for r in [*memory_rows(), *(r for r, _ in reviewed_rows())]}
+
+
+def confirmation_rows(n: int = CONFIRM_ROWS, adapter: Path | None = None) -> list:
+    """`n` evenly spaced id_train rows kept apart to confirm a choice made on the other sets: rows the
+    shipped adapter never trained on and not among the POLICY_ROWS, one per text, whose text (case and
+    spacing folded) is not that of a trained row, a policy row, a reviewed row (label_review.md) or a
+    row of the room-type classifier's memory (its nearest neighbour would be the sentence itself)."""
+    from models.datasets.language_sets import text_key
+    taken = {text_key(r.instruction) for r in unseen_train_rows(POLICY_ROWS, adapter)} | _memory_and_review_texts()
+    left = _apart_rows(taken, adapter)
     return left[::max(1, len(left) // n)][:n]
+
+
+def fresh_confirmation_rows(n: int = FRESH_ROWS, adapter: Path | None = None) -> list:
+    """`n` id_train rows drawn with FRESH_SEED (kept in id_train order) to confirm the rules-first-fieldwise
+    policy: rows the adapter never trained on, one per text, whose text is not that of a trained row or
+    of any row read before, i.e. any of `kept_apart_texts` (the policy rows, which hold the development
+    rows, the confirmation sets and the evaluation sets), the label review and the room-type memory."""
+    left = _apart_rows(kept_apart_texts() | _memory_and_review_texts(), adapter)
+    chosen = set(random.Random(FRESH_SEED).sample(range(len(left)), min(n, len(left))))
+    return [r for i, r in enumerate(left) if i in chosen]
 
 
 @cache
@@ -108,6 +136,16 @@ def confirmation_sets(n: int = CONFIRM_ROWS) -> dict[str, tuple]:
     rows = confirmation_rows(n)
     return {CONFIRMATION[0]: tuple(rows), CONFIRMATION[1]: tuple(text_shift(rows, CONFIRM_SEED)),
             CONFIRMATION[2]: tuple(object_shift(rows, CONFIRM_SEED))}
+
+
+@cache
+def fresh_confirmation_sets(n: int = FRESH_ROWS) -> dict[str, tuple]:
+    """The fresh confirmation sets: `fresh_confirmation_rows` as they are, and rewritten by the TS and OS
+    procedures with FRESH_SEED (as `confirmation_sets`)."""
+    from models.datasets.language_sets import object_shift, text_shift
+    rows = fresh_confirmation_rows(n)
+    return {FRESH[0]: tuple(rows), FRESH[1]: tuple(text_shift(rows, FRESH_SEED)),
+            FRESH[2]: tuple(object_shift(rows, FRESH_SEED))}
 
 
 def readings_cache(adapter: Path) -> Path:
