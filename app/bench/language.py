@@ -120,9 +120,8 @@ def confirmation_rows(n: int = CONFIRM_ROWS, adapter: Path | None = None) -> lis
 def fresh_confirmation_rows(n: int = FRESH_ROWS, adapter: Path | None = None) -> list:
     """`n` id_train rows drawn with FRESH_SEED (kept in id_train order) to confirm the rules-first-fieldwise
     policy: rows the adapter never trained on, one per text, whose text is not that of a trained row or
-    of any row read before, i.e. any of `kept_apart_texts` (the policy rows, which hold the development
-    rows, the confirmation sets and the evaluation sets), the label review and the room-type memory."""
-    left = _apart_rows(kept_apart_texts() | _memory_and_review_texts(), adapter)
+    of any row read before (`read_before_texts`)."""
+    left = _apart_rows(set(read_before_texts()), adapter)
     chosen = set(random.Random(FRESH_SEED).sample(range(len(left)), min(n, len(left))))
     return [r for i, r in enumerate(left) if i in chosen]
 
@@ -138,14 +137,40 @@ def confirmation_sets(n: int = CONFIRM_ROWS) -> dict[str, tuple]:
             CONFIRMATION[2]: tuple(object_shift(rows, CONFIRM_SEED))}
 
 
+def _development_texts() -> set[str]:
+    """Texts of the development sets (app/bench/results/language-augment/dev.py: policy rows rewritten with
+    seed 13), on which the fieldwise policy was designed row by row."""
+    import importlib.util
+
+    from models.datasets.language_sets import text_key
+    spec = importlib.util.spec_from_file_location("language_dev", RESULTS / "language-augment" / "dev.py")
+    dev = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(dev)
+    return {text_key(r.instruction) for rows in dev.dev_sets().values() for r in rows}
+
+
+@cache
+def read_before_texts() -> frozenset[str]:
+    """Texts (case and spacing folded) of every row read before the fresh confirmation: `kept_apart_texts`
+    (the policy rows, the confirmation sets, the evaluation sets), the development sets, the label
+    review and the room-type memory."""
+    return frozenset(kept_apart_texts() | _development_texts() | _memory_and_review_texts())
+
+
 @cache
 def fresh_confirmation_sets(n: int = FRESH_ROWS) -> dict[str, tuple]:
     """The fresh confirmation sets: `fresh_confirmation_rows` as they are, and rewritten by the TS and OS
-    procedures with FRESH_SEED (as `confirmation_sets`)."""
-    from models.datasets.language_sets import object_shift, text_shift
+    procedures with FRESH_SEED (as `confirmation_sets`), less the rewrites whose text is that of a row
+    read before (`read_before_texts`): the procedures turn different sentences into the same short one
+    ("put a cold glass bottle in the sink.")."""
+    from models.datasets.language_sets import object_shift, text_key, text_shift
     rows = fresh_confirmation_rows(n)
-    return {FRESH[0]: tuple(rows), FRESH[1]: tuple(text_shift(rows, FRESH_SEED)),
-            FRESH[2]: tuple(object_shift(rows, FRESH_SEED))}
+    read = read_before_texts()
+
+    def unread(shifted: list) -> tuple:
+        return tuple(r for r in shifted if text_key(r.instruction) not in read)
+    return {FRESH[0]: tuple(rows), FRESH[1]: unread(text_shift(rows, FRESH_SEED)),
+            FRESH[2]: unread(object_shift(rows, FRESH_SEED))}
 
 
 def readings_cache(adapter: Path) -> Path:
@@ -272,6 +297,14 @@ def decisions(scored: dict, rooms: dict, strict: str) -> dict[str, bool]:
     return {"strict_default": all(scored[k][strict][m] >= scored[k]["rules"][m]
                                   for k in CONFIRMATION for m in ("object_f1", "irecall")),
             "minilm_room_type": all(rooms[k]["minilm"] > rooms[k]["rules"] for k in CONFIRMATION)}
+
+
+def fieldwise_decision(scored: dict, fieldwise: str, strict: str) -> bool:
+    """The rule written before the fresh confirmation sets were read (language-policy/decision.md): the
+    fieldwise policy becomes the default iff, on every fresh set, its object F1 and iRecall are >= the
+    rules' and its GED is <= the strict policy's."""
+    return all(scored[k][fieldwise][m] >= scored[k]["rules"][m] for k in FRESH for m in ("object_f1", "irecall")) \
+        and all(scored[k][fieldwise]["ged"] <= scored[k][strict]["ged"] for k in FRESH)
 
 
 def score_parsers(rows, graphs: dict, seconds: dict) -> dict[str, dict]:
