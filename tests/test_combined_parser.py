@@ -111,7 +111,8 @@ def test_policies_differ_where_both_readings_name_a_type(tiny_adapter):
     assert sure.task_type == "pick_heat_then_place_in_recep" and unsure.task_type == ruled.task_type
     # but never a cue word the rules read ("chilled" -> cool)
     chilled = "Put a chilled mug in the sink"
-    cool = CombinedParser(lm=lm).merge(chilled, "kitchen", RuleParser().parse(chilled, "kitchen"), None, heat, (0.99, 1.0, 1.0, 1.0))
+    ruled = RuleParser().parse(chilled, "kitchen")
+    cool = CombinedParser(lm=lm).merge(chilled, "kitchen", ruled, None, heat, (0.99, 1.0, 1.0, 1.0))
     assert cool.task_type == "pick_cool_then_place_in_recep"
     with pytest.raises(ValueError, match="unknown policy"):
         CombinedParser(lm=lm, policy="vote")
@@ -143,8 +144,9 @@ def test_strict_policy_keeps_the_rules_refusals_and_lamp_alone_and_never_asks_th
     text = "Put the mug from the table in the sink"
     ruled = RuleParser().parse(text, "kitchen")
     heat = GraphFields("pick_heat_then_place_in_recep", False, "Mug", "SinkBasin")
-    assert strict.merge(text, "kitchen", ruled, None, heat, (0.95, 1, 1, 1)) == rules_first.merge(text, "kitchen", ruled, None,
-                                                                                         heat, (0.95, 1, 1, 1))
+    sure = (0.95, 1.0, 1.0, 1.0)
+    assert strict.merge(text, "kitchen", ruled, None, heat, sure) == rules_first.merge(text, "kitchen", ruled, None,
+                                                                                     heat, sure)
 
 
 def test_default_parser_is_combined_strict_and_loads_nothing_until_the_first_instruction(monkeypatch):
@@ -228,7 +230,8 @@ def test_fieldwise_policy_takes_each_model_field_it_is_sure_of_or_that_the_text_
     text = "Put the mug from the table in the sink"
     heat = GraphFields("pick_heat_then_place_in_recep", False, "Mug", "SinkBasin")
     p = (FIELD_CONFIDENCE, 1.0, 1.0, 1.0)
-    assert fields(fieldwise, text, heat, p)[0] == heat.task_type and fields(strict, text, heat, p)[0] == "pick_and_place_simple"
+    assert fields(fieldwise, text, heat, p)[0] == heat.task_type
+    assert fields(strict, text, heat, p)[0] == "pick_and_place_simple"
 
 
 def test_fieldwise_policy_answers_a_refusal_only_with_a_named_or_sure_target_and_keeps_a_lamp_alone():

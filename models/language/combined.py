@@ -53,7 +53,7 @@ POLICIES = ("rules-first", "lm-first", STRICT, FIELDWISE)
 DEFAULT_POLICY = STRICT
 DEFAULT_PARSER = "combined"  # of h3ds parse / generate, the studio and the API; H3DS_PARSER overrides it
 TASK_CONFIDENCE = 0.9  # rules-first(-strict): the model's task type over the rules' cue-less default
-FIELD_CONFIDENCE = 0.8  # rules-first-fieldwise: a field of the model's is taken over the rules' (chosen on the policy rows)
+FIELD_CONFIDENCE = 0.8  # rules-first-fieldwise: a model field this sure is taken (chosen on the policy rows)
 PLACE = "pick_and_place_simple"  # the rules' task type when they find no cue word
 NO_CONFIDENCE = (1.0, 1.0, 1.0, 1.0)  # per-field probabilities when none are known: sure of every field
 

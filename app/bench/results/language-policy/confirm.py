@@ -35,7 +35,8 @@ def main(argv: list[str]) -> int:
     if args.decode_only:
         return 0
     rules = RuleParser()
-    graphs, seconds = read_all(rows, readings, rules, {p: CombinedParser(lm=lm, rules=rules, policy=p) for p in POLICIES})
+    combined = {p: CombinedParser(lm=lm, rules=rules, policy=p) for p in POLICIES}
+    graphs, seconds = read_all(rows, readings, rules, combined)
     scored = {k: score_parsers(v, graphs, seconds) for k, v in sets.items()}
     columns = ["rules", "lora", *POLICIES]
     met = fieldwise_decision(scored, FIELDWISE, STRICT)

@@ -82,7 +82,8 @@ def main() -> int:
     readings = lora_readings(rows, _Cached(), readings_cache(default_adapter()), progress=False)
     rules = RuleParser()
     lines = ["Design sets of the combination policy (no evaluation or confirmation row): the 1,000 policy rows, "
-             "dev ts / dev os (seed 13, language-augment/dev.py); shipped adapter, cached readings, room type given", "",
+             "dev ts / dev os (seed 13, language-augment/dev.py); shipped adapter, cached readings, room type given",
+             "",
              "Where the rules' and the model's fields differ (rows the rules read with a relation, not flagged), "
              "who was right: rules / model / neither", "",
              "| set | field | case | rules | model | neither |", "| --- | --- | --- | ---: | ---: | ---: |"]
