@@ -87,7 +87,7 @@ def test_without_a_language_model_the_rules_answer_and_say_so(tmp_path):
 def test_parsers_by_name():
     assert make_parser("rules").name == "rules"
     assert make_parser("combined").name == "combined"
-    assert make_parser("combined").policy == "rules-first-strict"
+    assert make_parser("combined").policy == "rules-first-fieldwise"
     assert make_parser("openai", base_url="http://127.0.0.1:9/v1").name == "openai"
     with pytest.raises(ValueError, match="unknown parser"):
         make_parser("gpt")
@@ -149,17 +149,17 @@ def test_strict_policy_keeps_the_rules_refusals_and_lamp_alone_and_never_asks_th
                                                                                      heat, sure)
 
 
-def test_default_parser_is_combined_strict_and_loads_nothing_until_the_first_instruction(monkeypatch):
+def test_default_parser_is_combined_fieldwise_and_loads_nothing_until_the_first_instruction(monkeypatch):
     import os
     import subprocess
     import sys
 
     from app.pipeline import Pipeline
-    from models.language.combined import DEFAULT_PARSER, STRICT
+    from models.language.combined import DEFAULT_PARSER, FIELDWISE
     from models.language.room_type import EmbeddingRoomType
     monkeypatch.delenv("H3DS_PARSER", raising=False)
     parser = Pipeline().parser
-    assert DEFAULT_PARSER == "combined" and isinstance(parser, CombinedParser) and parser.policy == STRICT
+    assert DEFAULT_PARSER == "combined" and isinstance(parser, CombinedParser) and parser.policy == FIELDWISE
     assert isinstance(parser.room_types, EmbeddingRoomType) and parser.room_types.memory is None
     assert not parser.lm.loaded
     monkeypatch.setenv("H3DS_PARSER", "rules")
