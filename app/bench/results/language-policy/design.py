@@ -41,10 +41,11 @@ def design_sets() -> dict[str, list]:
 def field_disagreements(rows, readings, rules) -> dict[str, Counter]:
     """Per field, over rows the rules read with a relation and do not flag: where the two readings differ,
     who is right ("rules", "model", "neither"), split by whether each reading's type is named in the
-    text (targets, destinations) or by the model's probability (task type, slicing: sure = p >= 0.8)."""
+    text (targets, destinations) or by the model's probability (task type, slicing: sure = p >=
+    FIELD_CONFIDENCE)."""
     from models.language import InstructionError
     from models.language.alfred import named_types
-    from models.language.combined import rule_fields
+    from models.language.combined import FIELD_CONFIDENCE, rule_fields
     from models.language.llm.graph_text import GraphFields
     out = {f: Counter() for f in FIELDS}
     for row in rows:
@@ -66,7 +67,7 @@ def field_disagreements(rows, readings, rules) -> dict[str, Counter]:
             if f in ("target", "destination"):
                 case = f"rules' {'named' if r in named else 'unnamed'}, model's {'named' if m in named else 'unnamed'}"
             else:
-                case = f"model {'sure' if math.exp(rec['logprob'][i]) >= 0.8 else 'unsure'}"
+                case = f"model {'sure' if math.exp(rec['logprob'][i]) >= FIELD_CONFIDENCE else 'unsure'}"
             out[f][case, right] += 1
     return out
 
