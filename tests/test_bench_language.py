@@ -105,15 +105,17 @@ def test_shipped_room_type_memory_is_the_seeded_rows_embedded():
 def test_latency_counts_the_model_only_where_it_is_asked():
     from types import SimpleNamespace
 
-    from models.language.combined import STRICT
+    from models.language.combined import FIELDWISE, STRICT
     rows = [SimpleNamespace(instruction=t, room_type="bedroom") for t in ("Turn on the lamp", "Put the book on the bed")]
     readings = {(r.instruction, r.room_type): {"fields": ["look_at_obj_in_light", False, "Book", "DeskLamp"],
                                               "logprob": [0.0] * 4, "seconds": 0.5} for r in rows}
     rules = RuleParser()
-    parsers = {"strict": CombinedParser(rules=rules, policy=STRICT), "first": CombinedParser(rules=rules, policy="rules-first")}
+    parsers = {"strict": CombinedParser(rules=rules, policy=STRICT), "first": CombinedParser(rules=rules, policy="rules-first"),
+               "fieldwise": CombinedParser(rules=rules, policy=FIELDWISE)}
     _, seconds = read_all(rows, readings, rules, parsers)
     lamp, book = [(r.instruction, r.room_type) for r in rows]
     assert seconds["strict"][lamp] < 0.1 and seconds["first"][lamp] >= 0.5  # a lamp alone: the rules stand
+    assert seconds["fieldwise"][lamp] < 0.1 and seconds["fieldwise"][book] >= 0.5
     assert seconds["strict"][book] >= 0.5
 
 

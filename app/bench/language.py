@@ -252,8 +252,8 @@ def read_all(rows, readings: dict, rules: RuleParser, combined: dict) -> tuple[d
         seconds["lora"][key] = rec["seconds"] + time.perf_counter() - t1
         for name, parser in combined.items():
             t2 = time.perf_counter()
-            # hard input the rules flag is theirs to answer, and under rules-first-strict so is a refusal or a
-            # lamp alone: the model is not asked (as CombinedParser.parse), so its seconds are not counted
+            # hard input the rules flag is theirs to answer, and so is what the policy lets stand (rules_stand: a
+            # refusal or a lamp alone): the model is not asked (as CombinedParser.parse), its seconds not counted
             asked = not (ruled is not None and ruled.uncertain) and not parser.rules_stand(ruled)
             if ruled is not None and ruled.uncertain:
                 merged = ruled
