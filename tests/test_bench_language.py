@@ -105,15 +105,17 @@ def test_shipped_room_type_memory_is_the_seeded_rows_embedded():
 def test_latency_counts_the_model_only_where_it_is_asked():
     from types import SimpleNamespace
 
-    from models.language.combined import STRICT
+    from models.language.combined import FIELDWISE, STRICT
     rows = [SimpleNamespace(instruction=t, room_type="bedroom") for t in ("Turn on the lamp", "Put the book on the bed")]
     readings = {(r.instruction, r.room_type): {"fields": ["look_at_obj_in_light", False, "Book", "DeskLamp"],
                                               "logprob": [0.0] * 4, "seconds": 0.5} for r in rows}
     rules = RuleParser()
-    parsers = {"strict": CombinedParser(rules=rules, policy=STRICT), "first": CombinedParser(rules=rules, policy="rules-first")}
+    parsers = {"strict": CombinedParser(rules=rules, policy=STRICT), "first": CombinedParser(rules=rules, policy="rules-first"),
+               "fieldwise": CombinedParser(rules=rules, policy=FIELDWISE)}
     _, seconds = read_all(rows, readings, rules, parsers)
     lamp, book = [(r.instruction, r.room_type) for r in rows]
     assert seconds["strict"][lamp] < 0.1 and seconds["first"][lamp] >= 0.5  # a lamp alone: the rules stand
+    assert seconds["fieldwise"][lamp] < 0.1 and seconds["fieldwise"][book] >= 0.5
     assert seconds["strict"][book] >= 0.5
 
 
@@ -147,3 +149,44 @@ def test_each_adapter_has_its_own_readings_cache(tmp_path):
         (tmp_path / name / "adapter_model.safetensors").write_bytes(data)
     assert readings_cache(tmp_path / "a") != readings_cache(tmp_path / "b")
     assert readings_cache(tmp_path / "a") == readings_cache(tmp_path / "c")
+
+
+def test_fresh_confirmation_sets_are_apart_from_every_row_read_before():
+    from app.bench.language import (CONFIRM_SEED, FRESH, FRESH_SEED, POLICY_ROWS, _adapter_split, _development_texts,
+                                    confirmation_sets, fresh_confirmation_rows, fresh_confirmation_sets,
+                                    kept_apart_texts, read_before_texts)
+    from models.datasets.language_sets import SEED, text_key
+    from models.language.room_type import memory_rows
+    rows = fresh_confirmation_rows(60)
+    assert len(rows) == 60 and rows == fresh_confirmation_rows(60)  # deterministic
+    texts = {text_key(r.instruction) for r in rows}
+    assert len(texts) == 60
+    train, seen, _ = _adapter_split()
+    assert not texts & {text_key(train[i].instruction) for i in seen}
+    # policy rows (and the dev rows among them), the confirmation sets, every evaluation set
+    assert not texts & kept_apart_texts()
+    assert not texts & {text_key(r.instruction) for s in confirmation_sets().values() for r in s}
+    assert not texts & {text_key(r.instruction) for r in unseen_train_rows(POLICY_ROWS)}
+    assert not texts & {text_key(r.instruction) for r in memory_rows()}
+    assert not texts & {text_key(r.instruction) for r, _ in reviewed_rows()}
+    assert not texts & _development_texts()  # dev ts / os, read row by row while designing the policy
+    assert FRESH_SEED not in (SEED, CONFIRM_SEED, 13, 21)  # evaluation, confirmation, development, augmentation
+    sets = fresh_confirmation_sets(60)
+    assert list(sets) == list(FRESH) and list(sets[FRESH[0]]) == rows
+    sources = {r.source for r in rows}
+    for shifted in (sets[FRESH[1]], sets[FRESH[2]]):
+        assert shifted and {r.source for r in shifted} <= sources
+        assert not {text_key(r.instruction) for r in shifted} & (texts | read_before_texts())
+
+
+def test_fieldwise_decision_needs_every_fresh_set_and_the_strict_policy_s_ged():
+    from app.bench.language import FRESH, fieldwise_decision
+    scored = {k: {"rules": {"object_f1": 0.9, "irecall": 0.8, "ged": 1.1},
+                  "strict": {"object_f1": 0.91, "irecall": 0.8, "ged": 1.0},
+                  "fieldwise": {"object_f1": 0.9, "irecall": 0.81, "ged": 1.0}} for k in FRESH}
+    assert fieldwise_decision(scored, "fieldwise", "strict")  # equal is enough
+    scored[FRESH[2]]["fieldwise"]["ged"] = 1.01
+    assert not fieldwise_decision(scored, "fieldwise", "strict")
+    scored[FRESH[2]]["fieldwise"]["ged"] = 0.9
+    scored[FRESH[1]]["fieldwise"]["object_f1"] = 0.89
+    assert not fieldwise_decision(scored, "fieldwise", "strict")

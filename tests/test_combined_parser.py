@@ -87,7 +87,7 @@ def test_without_a_language_model_the_rules_answer_and_say_so(tmp_path):
 def test_parsers_by_name():
     assert make_parser("rules").name == "rules"
     assert make_parser("combined").name == "combined"
-    assert make_parser("combined").policy == "rules-first-strict"
+    assert make_parser("combined").policy == "rules-first-fieldwise"
     assert make_parser("openai", base_url="http://127.0.0.1:9/v1").name == "openai"
     with pytest.raises(ValueError, match="unknown parser"):
         make_parser("gpt")
@@ -105,13 +105,14 @@ def test_policies_differ_where_both_readings_name_a_type(tiny_adapter):
     assert lm_first.relations[-1] == ("Mug", "placed_at", "DiningTable")
     # a task type the model is sure of replaces the rules' cue-less default; an unsure one does not
     heat = GraphFields("pick_heat_then_place_in_recep", False, "Mug", "SinkBasin")
-    sure = CombinedParser(lm=lm).merge(text, "kitchen", ruled, None, heat, task_confidence=0.95)
-    unsure = CombinedParser(lm=lm).merge(text, "kitchen", ruled, None, heat, task_confidence=0.5)
+    sure = CombinedParser(lm=lm).merge(text, "kitchen", ruled, None, heat, (0.95, 1.0, 1.0, 1.0))
+    unsure = CombinedParser(lm=lm).merge(text, "kitchen", ruled, None, heat, (0.5, 1.0, 1.0, 1.0))
     assert ruled.task_type == "pick_and_place_simple"
     assert sure.task_type == "pick_heat_then_place_in_recep" and unsure.task_type == ruled.task_type
     # but never a cue word the rules read ("chilled" -> cool)
     chilled = "Put a chilled mug in the sink"
-    cool = CombinedParser(lm=lm).merge(chilled, "kitchen", RuleParser().parse(chilled, "kitchen"), None, heat, 0.99)
+    ruled = RuleParser().parse(chilled, "kitchen")
+    cool = CombinedParser(lm=lm).merge(chilled, "kitchen", ruled, None, heat, (0.99, 1.0, 1.0, 1.0))
     assert cool.task_type == "pick_cool_then_place_in_recep"
     with pytest.raises(ValueError, match="unknown policy"):
         CombinedParser(lm=lm, policy="vote")
@@ -143,21 +144,22 @@ def test_strict_policy_keeps_the_rules_refusals_and_lamp_alone_and_never_asks_th
     text = "Put the mug from the table in the sink"
     ruled = RuleParser().parse(text, "kitchen")
     heat = GraphFields("pick_heat_then_place_in_recep", False, "Mug", "SinkBasin")
-    assert strict.merge(text, "kitchen", ruled, None, heat, 0.95) == rules_first.merge(text, "kitchen", ruled, None,
-                                                                                         heat, 0.95)
+    sure = (0.95, 1.0, 1.0, 1.0)
+    assert strict.merge(text, "kitchen", ruled, None, heat, sure) == rules_first.merge(text, "kitchen", ruled, None,
+                                                                                     heat, sure)
 
 
-def test_default_parser_is_combined_strict_and_loads_nothing_until_the_first_instruction(monkeypatch):
+def test_default_parser_is_combined_fieldwise_and_loads_nothing_until_the_first_instruction(monkeypatch):
     import os
     import subprocess
     import sys
 
     from app.pipeline import Pipeline
-    from models.language.combined import DEFAULT_PARSER, STRICT
+    from models.language.combined import DEFAULT_PARSER, FIELDWISE
     from models.language.room_type import EmbeddingRoomType
     monkeypatch.delenv("H3DS_PARSER", raising=False)
     parser = Pipeline().parser
-    assert DEFAULT_PARSER == "combined" and isinstance(parser, CombinedParser) and parser.policy == STRICT
+    assert DEFAULT_PARSER == "combined" and isinstance(parser, CombinedParser) and parser.policy == FIELDWISE
     assert isinstance(parser.room_types, EmbeddingRoomType) and parser.room_types.memory is None
     assert not parser.lm.loaded
     monkeypatch.setenv("H3DS_PARSER", "rules")
@@ -194,3 +196,63 @@ def test_room_type_of_an_instruction_given_without_one_comes_from_the_classifier
     broken = CombinedParser(lm=NoModel(), policy=STRICT, room_types=Rooms(ImportError("no torch")))
     graph = broken.parse(text)
     assert graph.room_type == "kitchen" and any("room-type classifier is not available" in m for m in graph.messages)
+
+
+def test_fieldwise_policy_takes_each_model_field_it_is_sure_of_or_that_the_text_names():
+    from models.language.combined import FIELD_CONFIDENCE, FIELDWISE, STRICT
+
+    class NoModel(LoraParser):
+        def read(self, text, room):
+            raise AssertionError("merge is given the model's fields; the model must not be asked")
+    fieldwise, strict = CombinedParser(lm=NoModel(), policy=FIELDWISE), CombinedParser(lm=NoModel(), policy=STRICT)
+    sure, unsure = (0.99,) * 4, (0.5,) * 4
+    assert 0.5 < FIELD_CONFIDENCE <= 0.99
+
+    def fields(policy, text, model, confidence):
+        ruled = RuleParser().parse(text, "kitchen")
+        graph = policy.merge(text, "kitchen", ruled, None, model, confidence)
+        return graph.task_type, graph.sliced, graph.relations[0][0], graph.relations[-1][2]
+    # both readings name a target: the model's (here it read the object acted on, the rules the tool)
+    text = "Use a knife to remove the stem of a cooled tomato."
+    model = GraphFields("pick_cool_then_place_in_recep", False, "Tomato", "CounterTop")
+    assert fields(fieldwise, text, model, unsure)[2] == "Tomato" and fields(strict, text, model, sure)[2] == "Knife"
+    # a model target the text does not name never replaces a named one, however sure (rare objects)
+    text = "Put a chilled ladle on the counter"
+    model = GraphFields("pick_cool_then_place_in_recep", False, "Spoon", "CounterTop")
+    assert fields(fieldwise, text, model, sure)[2] == "Ladle"
+    # slicing and a named destination: the model's when it is sure, the rules' when it is not
+    text = "Put a knife on a small black table."
+    model = GraphFields("pick_and_place_simple", True, "Knife", "SideTable")
+    assert fields(fieldwise, text, model, sure)[1:] == (True, "Knife", "SideTable")
+    assert fields(fieldwise, text, model, unsure)[1:] == (False, "Knife", "DiningTable")
+    assert fields(strict, text, model, sure)[1:] == (False, "Knife", "DiningTable")
+    # a task type over the rules' cue-less default at FIELD_CONFIDENCE (below the strict policy's 0.9)
+    text = "Put the mug from the table in the sink"
+    heat = GraphFields("pick_heat_then_place_in_recep", False, "Mug", "SinkBasin")
+    p = (FIELD_CONFIDENCE, 1.0, 1.0, 1.0)
+    assert fields(fieldwise, text, heat, p)[0] == heat.task_type
+    assert fields(strict, text, heat, p)[0] == "pick_and_place_simple"
+
+
+def test_fieldwise_policy_answers_a_refusal_only_with_a_named_or_sure_target_and_keeps_a_lamp_alone():
+    from models.language.combined import FIELDWISE
+
+    class NoModel(LoraParser):
+        def read(self, text, room):
+            raise AssertionError("a lamp alone stands: the model must not be asked")
+    fieldwise = CombinedParser(lm=NoModel(), policy=FIELDWISE)
+    text = "Put a tube on a toilet paper holder."  # the rules find no object to pick up
+    with pytest.raises(InstructionError) as failure:
+        RuleParser().parse(text, "bathroom")
+    tube = GraphFields("pick_and_place_simple", False, "ToiletPaper", "ToiletPaperHanger")
+    graph = fieldwise.merge(text, "bathroom", None, failure.value, tube, (1.0, 1.0, 0.95, 1.0))
+    assert graph.uncertain and ("ToiletPaper", "placed_at", "ToiletPaperHanger") in graph.relations
+    with pytest.raises(InstructionError):  # an unnamed target the model is unsure of: the refusal stands
+        fieldwise.merge(text, "bathroom", None, failure.value, tube, (1.0, 1.0, 0.5, 1.0))
+    nothing = "Hello there, how are you today?"  # names no type: never an invented reading, however sure
+    with pytest.raises(InstructionError):
+        fieldwise.merge(nothing, None, None, InstructionError("no object"), tube, (1.0,) * 4)
+    lamp = "Turn on the lamp"
+    ruled = RuleParser().parse(lamp, "bedroom")
+    look = GraphFields("look_at_obj_in_light", False, "Book", "DeskLamp")
+    assert fieldwise.merge(lamp, "bedroom", ruled, None, look) == ruled == fieldwise.parse(lamp, "bedroom")

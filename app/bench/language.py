@@ -9,7 +9,9 @@ re-scored, and more sets added, without decoding again. The `lora` graph is the 
 + merge, as `h3ds parse` runs them (rules only where the model is not asked). The policy is chosen on
 id_train rows the shipped adapter never trained on (`unseen_train_rows`), not on the evaluation sets;
 the default parser and room-type classifier were confirmed on id_train rows kept apart from both
-(`confirmation_sets`) under decision rules written before those sets were read (`decisions`).
+(`confirmation_sets`) under decision rules written before those sets were read (`decisions`), and the
+fieldwise policy on fresh rows drawn after those were spent (`fresh_confirmation_sets`,
+`fieldwise_decision`, rule in results/language-policy/decision.md).
 """
 
 from __future__ import annotations
@@ -32,6 +34,11 @@ POLICY_ROWS = 1000  # id_train rows unseen by the adapter, on which the combinat
 CONFIRM_ROWS = 600
 CONFIRM_SEED = 11
 CONFIRMATION = ("confirm id", "confirm ts", "confirm os")
+# Fresh confirmation sets: drawn after the confirmation sets were spent, for the rules-first-fieldwise
+# decision (app/bench/results/language-policy/decision.md); TS / OS with a seed of their own.
+FRESH_ROWS = 600
+FRESH_SEED = 17
+FRESH = ("fresh id", "fresh ts", "fresh os")
 REVIEW = Path(__file__).parents[2] / "models/data/language/label_review.md"
 
 
@@ -78,25 +85,47 @@ def kept_apart_texts() -> set[str]:
     return {text_key(r.instruction) for r in rows}
 
 
-def confirmation_rows(n: int = CONFIRM_ROWS, adapter: Path | None = None) -> list:
-    """`n` evenly spaced id_train rows kept apart to confirm a choice made on the other sets: rows the
-    shipped adapter never trained on and not among the POLICY_ROWS, one per text, whose text (case and
-    spacing folded) is not that of a trained row, a policy row, a reviewed row (label_review.md) or a
-    row of the room-type classifier's memory (its nearest neighbour would be the sentence itself)."""
+def _apart_rows(taken: set[str], adapter: Path | None = None) -> list:
+    """id_train rows the adapter never trained on, in id_train order, one per text, whose text (case and
+    spacing folded) is neither in `taken` nor that of a trained row."""
     from models.datasets.language_sets import text_key
-    from models.language.room_type import memory_rows
     train, seen, unseen = _adapter_split(adapter)
-    policy = unseen_train_rows(POLICY_ROWS, adapter)
-    taken = {text_key(train[i].instruction) for i in seen}
-    taken |= {text_key(r.instruction) for rows in (policy, memory_rows()) for r in rows}
-    taken |= {text_key(r.instruction) for r, _ in reviewed_rows()}
+    taken = taken | {text_key(train[i].instruction) for i in seen}
     left = []
     for i in unseen:
         key = text_key(train[i].instruction)
         if key not in taken:
             taken.add(key)
             left.append(train[i])
+    return left
+
+
+def _memory_and_review_texts() -> set[str]:
+    """Texts of the room-type classifier's memory (its nearest neighbour would be the sentence itself) and
+    of the label review (read by a person)."""
+    from models.datasets.language_sets import text_key
+    from models.language.room_type import memory_rows
+    return {text_key(r.instruction) for r in [*memory_rows(), *(r for r, _ in reviewed_rows())]}
+
+
+def confirmation_rows(n: int = CONFIRM_ROWS, adapter: Path | None = None) -> list:
+    """`n` evenly spaced id_train rows kept apart to confirm a choice made on the other sets: rows the
+    shipped adapter never trained on and not among the POLICY_ROWS, one per text, whose text (case and
+    spacing folded) is not that of a trained row, a policy row, a reviewed row (label_review.md) or a
+    row of the room-type classifier's memory (its nearest neighbour would be the sentence itself)."""
+    from models.datasets.language_sets import text_key
+    taken = {text_key(r.instruction) for r in unseen_train_rows(POLICY_ROWS, adapter)} | _memory_and_review_texts()
+    left = _apart_rows(taken, adapter)
     return left[::max(1, len(left) // n)][:n]
+
+
+def fresh_confirmation_rows(n: int = FRESH_ROWS, adapter: Path | None = None) -> list:
+    """`n` id_train rows drawn with FRESH_SEED (kept in id_train order) to confirm the rules-first-fieldwise
+    policy: rows the adapter never trained on, one per text, whose text is not that of a trained row or
+    of any row read before (`read_before_texts`)."""
+    left = _apart_rows(set(read_before_texts()), adapter)
+    chosen = set(random.Random(FRESH_SEED).sample(range(len(left)), min(n, len(left))))
+    return [r for i, r in enumerate(left) if i in chosen]
 
 
 @cache
@@ -108,6 +137,42 @@ def confirmation_sets(n: int = CONFIRM_ROWS) -> dict[str, tuple]:
     rows = confirmation_rows(n)
     return {CONFIRMATION[0]: tuple(rows), CONFIRMATION[1]: tuple(text_shift(rows, CONFIRM_SEED)),
             CONFIRMATION[2]: tuple(object_shift(rows, CONFIRM_SEED))}
+
+
+def _development_texts() -> set[str]:
+    """Texts of the development sets (app/bench/results/language-augment/dev.py: policy rows rewritten with
+    seed 13), on which the fieldwise policy was designed row by row."""
+    import importlib.util
+
+    from models.datasets.language_sets import text_key
+    spec = importlib.util.spec_from_file_location("language_dev", RESULTS / "language-augment" / "dev.py")
+    dev = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(dev)
+    return {text_key(r.instruction) for rows in dev.dev_sets().values() for r in rows}
+
+
+@cache
+def read_before_texts() -> frozenset[str]:
+    """Texts (case and spacing folded) of every row read before the fresh confirmation: `kept_apart_texts`
+    (the policy rows, the confirmation sets, the evaluation sets), the development sets, the label
+    review and the room-type memory."""
+    return frozenset(kept_apart_texts() | _development_texts() | _memory_and_review_texts())
+
+
+@cache
+def fresh_confirmation_sets(n: int = FRESH_ROWS) -> dict[str, tuple]:
+    """The fresh confirmation sets: `fresh_confirmation_rows` as they are, and rewritten by the TS and OS
+    procedures with FRESH_SEED (as `confirmation_sets`), less the rewrites whose text is that of a row
+    read before (`read_before_texts`): the procedures turn different sentences into the same short one
+    ("put a cold glass bottle in the sink.")."""
+    from models.datasets.language_sets import object_shift, text_key, text_shift
+    rows = fresh_confirmation_rows(n)
+    read = read_before_texts()
+
+    def unread(shifted: list) -> tuple:
+        return tuple(r for r in shifted if text_key(r.instruction) not in read)
+    return {FRESH[0]: tuple(rows), FRESH[1]: unread(text_shift(rows, FRESH_SEED)),
+            FRESH[2]: unread(object_shift(rows, FRESH_SEED))}
 
 
 def readings_cache(adapter: Path) -> Path:
@@ -187,14 +252,14 @@ def read_all(rows, readings: dict, rules: RuleParser, combined: dict) -> tuple[d
         seconds["lora"][key] = rec["seconds"] + time.perf_counter() - t1
         for name, parser in combined.items():
             t2 = time.perf_counter()
-            # hard input the rules flag is theirs to answer, and under rules-first-strict so is a refusal or a
-            # lamp alone: the model is not asked (as CombinedParser.parse), so its seconds are not counted
+            # hard input the rules flag is theirs to answer, and so is what the policy lets stand (rules_stand: a
+            # refusal or a lamp alone): the model is not asked (as CombinedParser.parse), its seconds not counted
             asked = not (ruled is not None and ruled.uncertain) and not parser.rules_stand(ruled)
             if ruled is not None and ruled.uncertain:
                 merged = ruled
             else:
                 try:
-                    merged = parser.merge(text, room, ruled, failure, fields, math.exp(rec["logprob"][0]))
+                    merged = parser.merge(text, room, ruled, failure, fields, tuple(math.exp(p) for p in rec["logprob"]))
                 except InstructionError:
                     merged = None
             graphs[name][key] = merged
@@ -236,6 +301,14 @@ def decisions(scored: dict, rooms: dict, strict: str) -> dict[str, bool]:
             "minilm_room_type": all(rooms[k]["minilm"] > rooms[k]["rules"] for k in CONFIRMATION)}
 
 
+def fieldwise_decision(scored: dict, fieldwise: str, strict: str) -> bool:
+    """The rule written before the fresh confirmation sets were read (language-policy/decision.md): the
+    fieldwise policy becomes the default iff, on every fresh set, its object F1 and iRecall are >= the
+    rules' and its GED is <= the strict policy's."""
+    return all(scored[k][fieldwise][m] >= scored[k]["rules"][m] for k in FRESH for m in ("object_f1", "irecall")) \
+        and all(scored[k][fieldwise]["ged"] <= scored[k][strict]["ged"] for k in FRESH)
+
+
 def score_parsers(rows, graphs: dict, seconds: dict) -> dict[str, dict]:
     """Every metric of models/metrics/language.py, and p50 / p90 ms, per parser over `rows`."""
     from models.metrics.language import score_graphs
@@ -266,9 +339,17 @@ def role_line(set_name: str, name: str, r: dict) -> str:
     return f"| {set_name} | {name} | {' | '.join(cells)} |"
 
 
+def _set_table(scored: dict, names, columns: list[str]) -> list[str]:
+    """A markdown table of object F1 / iRecall / GED, one row per set in `names`, one column per parser."""
+    lines = ["| set | n | " + " | ".join(columns) + " |", "| --- | ---: |" + " --- |" * len(columns)]
+    return lines + [f"| {k} | {scored[k]['rules']['n']} | " + " | ".join(
+        f"{100 * scored[k][n]['object_f1']:.2f} / {100 * scored[k][n]['irecall']:.2f} / {scored[k][n]['ged']:.2f}"
+        for n in columns) + " |" for k in names]
+
+
 def main(args) -> int:
     from models.datasets.language_sets import load_language_set
-    from models.language.combined import DEFAULT_POLICY, POLICIES, STRICT, CombinedParser
+    from models.language.combined import DEFAULT_POLICY, FIELDWISE, POLICIES, STRICT, CombinedParser
     from models.language.llm.parser import LoraParser
     from models.language.room_type import K
 
@@ -276,6 +357,7 @@ def main(args) -> int:
     sets = {"id_train unseen (policy choice)": unseen_train_rows(POLICY_ROWS)}
     sets.update({n: load_language_set(n) for n in names})
     sets.update(confirmation_sets())
+    sets.update(fresh_confirmation_sets())
     if args.per_set:
         sets = {k: v[::max(1, len(v) // args.per_set)][:args.per_set] for k, v in sets.items()}
     review = reviewed_rows()
@@ -314,19 +396,21 @@ def main(args) -> int:
               "| --- | --- | --- |"]
     lines += [f"| {n} | " + " | ".join(f"{100 * r[n]['object_f1']:.2f} / {100 * r[n]['irecall']:.2f} / {r[n]['ged']:.2f}"
                                        for r in scored_review.values()) + " |" for n in ["rules", "lora", *combined]]
-    strict = next(n for n, parser in combined.items() if parser.policy == STRICT)
-    decided = decisions(scored, rooms, strict)
+    strict, fieldwise = (next(n for n, parser in combined.items() if parser.policy == p) for p in (STRICT, FIELDWISE))
+    decided = {**decisions(scored, rooms, strict), "fieldwise_default": fieldwise_decision(scored, fieldwise, strict)}
     columns = ["rules", "lora", *combined]
     lines += ["", f"confirmation sets ({CONFIRM_ROWS} id_train rows kept apart, as they are / TS / OS rewritten with "
-              f"seed {CONFIRM_SEED}; object F1 / iRecall / GED)", "",
-              "| set | n | " + " | ".join(columns) + " |", "| --- | ---: |" + " --- |" * len(columns)]
-    lines += [f"| {k} | {scored[k]['rules']['n']} | " + " | ".join(
-        f"{100 * scored[k][n]['object_f1']:.2f} / {100 * scored[k][n]['irecall']:.2f} / {scored[k][n]['ged']:.2f}"
-        for n in columns) + " |" for k in CONFIRMATION]
+              f"seed {CONFIRM_SEED}; object F1 / iRecall / GED)", "", *_set_table(scored, CONFIRMATION, columns)]
+    lines += ["", f"fresh confirmation sets ({FRESH_ROWS} id_train rows drawn with seed {FRESH_SEED} apart from every "
+              f"row read before, as they are / TS / OS rewritten with seed {FRESH_SEED}; object F1 / iRecall / GED)", "",
+              *_set_table(scored, FRESH, columns)]
     lines += ["", f"decision rule, {STRICT} as the default parser (object F1 and iRecall >= the rules' on every "
               f"confirmation set): {'met' if decided['strict_default'] else 'not met'}",
               "decision rule, MiniLM room type in the default parser (accuracy above the frequency rule's on every "
-              f"confirmation set): {'met' if decided['minilm_room_type'] else 'not met'}"]
+              f"confirmation set): {'met' if decided['minilm_room_type'] else 'not met'}",
+              f"decision rule, {FIELDWISE} as the default policy (object F1 and iRecall >= the rules' and GED <= "
+              f"{STRICT}'s on every fresh confirmation set; language-policy/decision.md): "
+              f"{'met' if decided['fieldwise_default'] else 'not met'}"]
     if args.decoding:
         from models.language.alfred import load_annotations
         rows = load_annotations("valid_seen")  # = id_eval, as ALFRED annotations (the training targets' form)
