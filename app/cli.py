@@ -14,6 +14,7 @@ from pathlib import Path
 from pydantic import ValidationError
 
 from models.language import InstructionError
+from models.language.combined import DEFAULT_POLICY, POLICIES, make_parser
 from models.placement import DEFAULT_SOLVER, SOLVERS, UnknownSolver
 from models.planning.apartment_planner import ApartmentError, is_apartment, parse_rooms
 from models.planning.floorplan import FloorplanError
@@ -80,11 +81,16 @@ def load_kept(path: str, plan) -> dict[str, tuple[float, float, float]]:
 
 
 def _parser_of(args):
-    """The instruction parser `--parser` names (None: the pipeline's default)."""
-    if not getattr(args, "parser", None):
+    """The instruction parser `--parser` names, `combined` if only `--policy` is given (None: the pipeline's
+    default)."""
+    if args.policy and not args.parser:
+        args.parser = "combined"
+    if not args.parser:
         return None
-    from models.language.combined import make_parser
-    options = {"base_url": args.openai_url, "model": args.openai_model} if args.parser == "openai" else {}
+    if args.policy and args.parser != "combined":
+        raise BadInput(f"--policy is for --parser combined, not {args.parser}")
+    options = {"base_url": args.openai_url, "model": args.openai_model} if args.parser == "openai" else \
+        {"policy": args.policy}
     return make_parser(args.parser, **options)
 
 
@@ -348,6 +354,8 @@ def _parser_options(p: argparse.ArgumentParser) -> None:
     p.add_argument("--openai-url", default=None, help="--parser openai: the server's base URL, e.g. "
                    "http://127.0.0.1:8000/v1 (or H3DS_OPENAI_BASE_URL)")
     p.add_argument("--openai-model", default=None, help="--parser openai: the served model's name")
+    p.add_argument("--policy", choices=POLICIES, default=None, help=f"--parser combined: how the rules and the model "
+                   f"are combined (default {DEFAULT_POLICY}; models/language/combined.py)")
 
 
 def build_parser() -> argparse.ArgumentParser:

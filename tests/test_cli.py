@@ -127,3 +127,18 @@ def test_unknown_solver(tmp_path, capsys):
 def test_binary_instruction_through_the_real_process():
     proc = subprocess.run(H3DS + ["parse", "\x7f\x01\x02"], capture_output=True, text=True, timeout=60)
     assert proc.returncode == 2 and "Traceback" not in proc.stderr and proc.stderr.count("\n") == 1
+
+
+def test_parse_policy_picks_how_rules_and_model_combine(capsys, monkeypatch):
+    """--policy builds the combined parser with that policy; it is refused for another parser."""
+    from models.language import combined
+    made = []
+    monkeypatch.setattr(combined.CombinedParser, "parse", lambda self, text, room=None: made.append(self.policy) or
+                        combined.RuleParser().parse(text, room))
+    code, out, _ = run(["parse", "Put a mug in the sink", "--room-type", "kitchen", "--policy", "rules-first-strict",
+                        "--json"], capsys)
+    assert code == 0 and made == ["rules-first-strict"] and json.loads(out)["objects"]
+    code, _, err = run(["parse", "Put a mug in the sink", "--parser", "rules", "--policy", "lm-first"], capsys)
+    assert code == 2 and "--policy is for --parser combined, not rules" in err
+    code, _, err = run(["parse", "Put a mug in the sink", "--policy", "best"], capsys)
+    assert code == 2 and "invalid choice: 'best'" in err

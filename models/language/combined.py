@@ -213,8 +213,8 @@ def default_parser_name() -> str:
 
 
 def make_parser(name: str | None = None, **options):
-    """A parser by name (None: the default): combined, rules, lora, openai (options: base_url, model,
-    api_key). Nothing heavy is loaded here: the models load at the first instruction that needs them."""
+    """A parser by name (None: the default): combined (option: policy), rules, lora, openai (options:
+    base_url, model, api_key). Nothing heavy is loaded here: the models load at the first instruction that needs them."""
     name = name or default_parser_name()
     if name == "rules":
         return RuleParser()
@@ -222,7 +222,7 @@ def make_parser(name: str | None = None, **options):
         return LoraParser()
     if name == "combined":
         from models.language.room_type import EmbeddingRoomType
-        return CombinedParser(room_types=EmbeddingRoomType())
+        return CombinedParser(policy=options.get("policy") or DEFAULT_POLICY, room_types=EmbeddingRoomType())
     if name == "openai":
         from models.language.llm.openai_backend import OpenAIParser
         return OpenAIParser(**options)
