@@ -13,14 +13,14 @@ from fastapi import FastAPI, HTTPException, Response
 from pydantic import AfterValidator, BaseModel, Field, model_validator
 
 from app.bridge import bridge_for, mount
-from app.pipeline import Pipeline, dump
+from app.pipeline import Pipeline, dump, strangers
 from models.exports.apartment import apartment_house
 from models.exports.stored import glb_of, house_of
 from models.language import InstructionError, check_instruction
 from models.placement import DEFAULT_SOLVER, SOLVERS
 from models.planning.apartment_planner import ApartmentError, is_apartment, parse_rooms
 from models.planning.floorplan import FloorplanError
-from models.values import Scene
+from models.values import ConstraintPlan, Scene
 from models.values.apartment import APARTMENT, Apartment
 from models.world import normalise_room_type
 from studio_db import NotFound, Store
@@ -43,6 +43,21 @@ class GenerateRequest(BaseModel):
     solver: Annotated[str, AfterValidator(_known_solver)] = DEFAULT_SOLVER
     rooms: Annotated[list[str] | None, Field(max_length=100, examples=[["kitchen", "living room", "bedroom"]]),
                      AfterValidator(parse_rooms)] = None  # room_type "apartment" only
+
+
+class PlaceRequest(BaseModel):
+    """A constraint plan to place (interfaces.md), with poses to keep as they are (`h3ds place --keep`)."""
+
+    plan: ConstraintPlan
+    seed: int = Field(0, ge=0, le=2**31 - 1)
+    solver: Annotated[str, AfterValidator(_known_solver)] = DEFAULT_SOLVER
+    keep: dict[str, tuple[float, float, float]] = Field(default_factory=dict, examples=[{"fridge-0": [0.4, 0.4, 0]}])
+
+    @model_validator(mode="after")
+    def _kept_are_its_objects(self) -> PlaceRequest:
+        if unknown := strangers(self.plan, self.keep):
+            raise ValueError(f"keep: not objects of plan {self.plan.id}: {', '.join(unknown)}")
+        return self
 
 
 def _room_type(name: str) -> str:
@@ -112,6 +127,12 @@ def create_app(store: Store, pipeline: Pipeline | None = None) -> FastAPI:
         except (ApartmentError, FloorplanError) as e:
             raise HTTPException(422, [{"loc": ["body", "rooms"], "msg": str(e)}]) from e
         return {k: json.loads(dump(getattr(gen, k))) for k in ("task_graph", "plan", "layout", "scene")}
+
+    @app.post("/place")
+    def place(req: PlaceRequest) -> dict:
+        """Place a plan's objects (the layout JSON of interfaces.md); the `keep` poses (object id -> x, z,
+        rotation) stay as they are and the rest is placed around them."""
+        return json.loads(dump(pipeline.place(req.plan, req.seed, req.solver, keep=req.keep or None)))
 
     @app.post("/scenes", status_code=201)
     def accept(req: AcceptRequest) -> dict:

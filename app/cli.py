@@ -70,14 +70,12 @@ def load_plan(path: str):
 
 def load_kept(path: str, plan) -> dict[str, tuple[float, float, float]]:
     """The poses of a layout file's placements, to keep when placing `plan` (`h3ds place --keep`)."""
-    from app.pipeline import pose_of
+    from app.pipeline import pose_of, strangers
     from models.values import Layout
-    layout = _load_value(path, Layout, "layout")
-    ids = {o.id for o in plan.objects}
-    strangers = [p.id for p in layout.placements if p.id not in ids]
-    if strangers:
-        raise BadInput(f"{path}: not objects of plan {plan.id}: {', '.join(strangers)}")
-    return {p.id: pose_of(p) for p in layout.placements}
+    keep = {p.id: pose_of(p) for p in _load_value(path, Layout, "layout").placements}
+    if unknown := strangers(plan, keep):
+        raise BadInput(f"{path}: not objects of plan {plan.id}: {', '.join(unknown)}")
+    return keep
 
 
 def _parser_of(args):

@@ -134,6 +134,12 @@ def kept_around_moves(gen: Generation, moved: Collection[str]) -> Fixed:
     return keep
 
 
+def strangers(plan: ConstraintPlan, keep: Fixed) -> list[str]:
+    """The ids of `keep` that are not objects of `plan` (a kept pose must be one of its objects')."""
+    ids = {o.id for o in plan.objects}
+    return [i for i in keep if i not in ids]
+
+
 def pose_of(p: Placement) -> tuple[float, float, float]:
     """(x, z, rotation) of a placement: what a kept pose is."""
     return p.x, p.z, p.rotation
