@@ -8,7 +8,6 @@ from models.metrics import scene_metrics
 from models.placement.greedy import Episode
 from models.placement import habits
 from models.placement.habits import Habits, keep_companions
-from models.placement.moves import Reach
 from models.placement.polish import polish
 
 PLANS = [r.plan for r in load_dataset("seen", "train")[:80]]
@@ -23,7 +22,7 @@ def _finished(plan, fixed=None):
 
 def _judged(plan, ep):
     layout = ep.layout("greedy", 0, 0.0)
-    out_of_reach = len(Reach(ep).unreachable(ep.placed))
+    out_of_reach = len(ep.reach.unreachable(ep.placed))
     return scene_metrics(plan, layout), layout_energy(plan, layout.placements).total, out_of_reach
 
 

@@ -143,15 +143,16 @@ KNOWN = Path(__file__).parent / "fixtures" / "plan2place_known_layouts.json"
 
 
 def _placing_only(name: str):
-    """The solver without the repairs, which came after the fixture (they have tests of their own)."""
+    """The solver without the repairs and the reach guard, which came after the fixture (they have tests of
+    their own)."""
     from models.placement.greedy import GreedySolver
     from models.placement.plan2place.agent import fast_policy, untrained_network
     from models.placement.plan2place.solver import Plan2PlaceSolver
     if name == "greedy":
-        return GreedySolver(repair=False)
+        return GreedySolver(repair=False, guard=False)
     if name == "plan2place":
-        return Plan2PlaceSolver(repair=False)
-    return Plan2PlaceSolver(fast_policy(untrained_network()), name=name, repair=False)
+        return Plan2PlaceSolver(repair=False, guard=False)
+    return Plan2PlaceSolver(fast_policy(untrained_network()), name=name, repair=False, guard=False)
 
 
 def test_layouts_are_the_known_answer_of_the_code_before_the_speed_work():
@@ -184,7 +185,8 @@ def record_plan2place() -> None:
     from models.placement.plan2place.solver import Plan2PlaceSolver
     known = json.loads(KNOWN.read_text())
     net = network_of(shipped_weights())
-    solver = Plan2PlaceSolver(lambda obs: net.policy(obs).numpy(), use_global=net.use_global, repair=False)
+    solver = Plan2PlaceSolver(lambda obs: net.policy(obs).numpy(), use_global=net.use_global, repair=False,
+                              guard=False)
     plans = {r.plan.id: r.plan for r in pick_records("seen", 20)}
     for key in [k for k in known["layouts"] if k.startswith("plan2place/")]:
         _, seed, pid = key.split("/")

@@ -8,7 +8,6 @@ from models.datasets import load_dataset
 from models.energy.exact import layout_energy
 from models.metrics import scene_metrics
 from models.placement.greedy import Episode, GreedySolver
-from models.placement.moves import Reach
 from models.placement.polish import broken, crowded, polish
 
 SEEN = {r.plan.id: r.plan for r in load_dataset("seen", "train")[:120]}
@@ -22,7 +21,7 @@ def _finished(plan, fixed=None):
 
 def _judged(plan, ep):
     layout = ep.layout("greedy", 0, 0.0)
-    out_of_reach = len(Reach(ep).unreachable(ep.placed))
+    out_of_reach = len(ep.reach.unreachable(ep.placed))
     return scene_metrics(plan, layout), layout_energy(plan, layout.placements).total, out_of_reach
 
 

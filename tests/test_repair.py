@@ -2,9 +2,10 @@
 task objects the robot cannot reach are made reachable by moving a few objects. Never a fixed one; each
 move a step; a layout with nothing to repair is untouched."""
 
+import numpy as np
+
 from models.datasets import load_dataset
 from models.metrics import scene_metrics
-from models.placement.moves import Reach
 from models.placement.repair import make_room, restore_access
 from models.placement.greedy import Episode, GreedySolver
 
@@ -23,12 +24,12 @@ def test_unreachable_task_objects_are_made_reachable_and_each_move_is_a_step():
     plan = _plan("seen-00346")  # greedy walls off the garbage can and a side table
     ep = _finished(plan)
     before = scene_metrics(plan, ep.layout("greedy", 0, 0.0))
-    assert Reach(ep).unreachable(ep.placed) and before.key_nav < 1
+    assert ep.reach.unreachable(ep.placed) and before.key_nav < 1
     steps = []
     moved = restore_access(ep, steps.append)
     after = scene_metrics(plan, ep.layout("greedy", 0, 0.0))
     assert moved and [s.object_id for s in steps] == moved
-    assert not Reach(ep).unreachable(ep.placed) and after.key_nav == 1.0  # the metric agrees
+    assert not ep.reach.unreachable(ep.placed) and after.key_nav == 1.0  # the metric agrees
     assert after.collisions == 0 and after.oob == 0 and after.cnt == 1.0
     last = {s.object_id: (s.x, s.z, s.rotation) for s in steps}
     assert all((p.x, p.z, p.rotation) == last[p.id] for p in ep.placed if p.id in last)
@@ -46,14 +47,27 @@ def test_a_reachable_layout_and_fixed_objects_are_left_as_they_are():
     walled = _finished(plan)
     fixed = {p.id: (p.x, p.z, p.rotation) for p in walled.placed}
     again = _finished(plan, fixed)
-    assert Reach(again).unreachable(again.placed) and restore_access(again) == []
+    assert again.reach.unreachable(again.placed) and restore_access(again) == []
 
 
 def test_the_greedy_solver_finishes_with_the_repair_unless_told_not_to():
-    plan = _plan("seen-00395")  # greedy leaves both task objects out of reach
-    plain = scene_metrics(plan, GreedySolver(repair=False).solve(plan))
-    repaired = scene_metrics(plan, GreedySolver().solve(plan))
+    plan = _plan("seen-00395")  # greedy without its reach guard leaves both task objects out of reach
+    plain = scene_metrics(plan, GreedySolver(repair=False, guard=False).solve(plan))
+    repaired = scene_metrics(plan, GreedySolver(guard=False).solve(plan))
     assert plain.key_nav == 0 and repaired.key_nav == 1
+
+
+def test_the_reach_guard_keeps_the_task_objects_reachable_while_placing_and_says_so():
+    """The same plan with the guard and no repair: the step whose most wanted pose would wall off a task
+    object takes another one, and its step says why."""
+    plan = _plan("seen-00395")
+    steps = []
+    guarded = scene_metrics(plan, GreedySolver(repair=False).solve(plan, observer=steps.append))
+    assert guarded.key_nav == 1 and guarded.cnt == 1 and guarded.collisions == 0
+    assert [s.why for s in steps if s.why] == ["its most wanted pose would wall off a task object from the robot"]
+    step = next(s for s in steps if s.why)
+    chosen = np.flatnonzero((step.candidates == [step.x, step.z, step.rotation]).all(axis=1))
+    assert len(chosen) == 1 and step.scores[chosen[0]] < step.scores.max()  # not its lowest-energy pose
 
 
 def test_an_object_left_out_is_placed_after_the_objects_in_its_way_are_placed_again():
@@ -92,7 +106,7 @@ def test_a_blocker_far_from_the_walled_off_object_is_the_one_moved():
         "objects": [{"id": i, "type": t, "size": {"x": w, "y": 1, "z": d}, "role": r} for i, t, w, d, r, _ in objects]})
     ep = _finished(plan, {i: pose for i, *_, pose in objects})
     ep.problem.fixed = {"fridge-0": ep.problem.fixed["fridge-0"]}  # the others are the placer's to move
-    assert Reach(ep).unreachable(ep.placed) == ["fridge-0"]
+    assert ep.reach.unreachable(ep.placed) == ["fridge-0"]
     free = [p for p in ep.placed if p.id != "fridge-0"]
     assert _suspects(ep, Standing(ep), ["fridge-0"], free)[0] == "shelvingunit-0"
-    assert restore_access(ep) == ["shelvingunit-0"] and not Reach(ep).unreachable(ep.placed)
+    assert restore_access(ep) == ["shelvingunit-0"] and not ep.reach.unreachable(ep.placed)

@@ -11,6 +11,7 @@ from __future__ import annotations
 import copy
 import time
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -20,10 +21,13 @@ from models.placement.base import Fixed, PlacementStep, StepObserver
 from models.geometry import SweptBoxes
 from models.placement.candidates import OVERLAP_TOL, CandidateScorer, PlacedObject, Shared, front_boxes
 from models.placement.problem import PlacementProblem
+from models.placement.reach import Reach
 from models.placement.result import make_layout
 from models.values import ConstraintPlan, Layout, PlanObject
 
 NO_ROOM = "no collision-free position left in the room"
+GUARD_TRIES = 48  # Episode.guarded: candidates tried, most wanted first (Plan2Place's subset is 48)
+WALLS_OFF = "its most wanted pose would wall off a task object from the robot"  # a guarded step's reason
 
 
 @dataclass
@@ -90,6 +94,10 @@ class Episode:
         """The energy set-up of the objects placed by the steps so far (a repair's moves are not in it)."""
         return self._energy
 
+    @cached_property
+    def reach(self) -> Reach:
+        return Reach(self.problem)
+
     @property
     def done(self) -> bool:
         return self.i >= len(self.order)
@@ -141,6 +149,17 @@ class Episode:
         self.i += 1
         return reward
 
+    def guarded(self, opts: Options, order: np.ndarray) -> int:
+        """The reach guard, an action mask (not in the paper): of the feasible candidates `order` (indices into
+        `opts.feasible`, most wanted first), the first of the `GUARD_TRIES` first whose placing leaves no more
+        task objects out of the robot's reach (models.placement.reach); the most wanted if each of them walls
+        one off. A step-wise placer's energy sees only the objects placed so far, so a pose that walls off an
+        access strip can look best."""
+        order = order[:GUARD_TRIES]
+        poses = (self.scorer.place(opts.obj, *(float(v) for v in opts.cands[opts.feasible[k]])) for k in order)
+        kept = self.reach.first_keeping(self.placed, poses, self.setup.blocked, self.setup.reach)
+        return int(order[0 if kept is None else kept])
+
     def fork(self) -> Episode:
         """An independent copy of this episode (its energy set-ups are immutable and are shared)."""
         twin = copy.copy(self)
@@ -154,12 +173,12 @@ class Episode:
             self.apply(opts, int(np.argmin(opts.terms["total"])) if len(opts.feasible) else None)
         return self.energy
 
-    def step_record(self, opts: Options, pick: int | None, probs: np.ndarray) -> PlacementStep:
+    def step_record(self, opts: Options, pick: int | None, probs: np.ndarray, why: str = "") -> PlacementStep:
         """What the studio shows: `probs` (M,) over the feasible candidates; -inf for the rest."""
         scores = np.full(len(opts.cands), -np.inf)
         scores[opts.feasible] = probs
         pose = (None, None, None) if pick is None else tuple(float(v) for v in opts.cands[opts.feasible[pick]])
-        return PlacementStep(opts.obj.id, *pose, opts.cands, scores, dict(self.terms))
+        return PlacementStep(opts.obj.id, *pose, opts.cands, scores, dict(self.terms), why)
 
     def layout(self, solver: str, seed: int, elapsed: float) -> Layout:
         poses = {p.id: (p.x, p.z, p.rotation) for p in self.placed}
@@ -170,9 +189,10 @@ class Episode:
 class GreedySolver:
     name = "greedy"
 
-    def __init__(self, repair: bool = True):
-        """`repair`: finish with the repairs (models.placement.repair), as Plan2Place does."""
-        self.repair = repair
+    def __init__(self, repair: bool = True, guard: bool = True):
+        """`repair`: finish with the repairs (models.placement.repair), as Plan2Place does; `guard`: the reach
+        guard (`Episode.guarded`), as Plan2Place has."""
+        self.repair, self.guard = repair, guard
         if not repair:
             self.name = "greedy, no repair"
 
@@ -183,16 +203,17 @@ class GreedySolver:
         ep = Episode(plan, fixed)
         while not ep.done:
             opts = ep.options()
-            pick = None
-            probs = np.zeros(0)
+            pick, probs, why = None, np.zeros(0), ""
             if len(opts.feasible):
                 total = opts.terms["total"] + rng.uniform(0, 1e-9, len(opts.feasible))  # seeded tie-break
                 pick = int(np.argmin(total))
+                if self.guard and pick != (guarded := ep.guarded(opts, np.argsort(total, kind="stable"))):
+                    pick, why = guarded, WALLS_OFF
                 probs = np.exp(-(total - total.min()) / 0.05)
                 probs /= probs.sum()
             ep.apply(opts, pick)
             if observer is not None:
-                observer(ep.step_record(opts, pick, probs))
+                observer(ep.step_record(opts, pick, probs, why))
         if self.repair:
             from models.placement.repair import repair  # it builds on this module's Episode
             repair(ep, observer)

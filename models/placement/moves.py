@@ -1,6 +1,6 @@
-"""Moving objects of a finished episode (shared by the repairs and the polish): which task objects the
-robot reaches, the legal poses of an object among the others and their energy, the poses it could take if
-a few objects made way, and the placement step each move shows the observer."""
+"""Moving objects of a finished episode (shared by the repairs and the polish): the legal poses of an object
+among the others and their energy, the poses it could take if a few objects made way, and the placement step
+each move shows the observer (which task objects the robot reaches: models.placement.reach)."""
 
 from __future__ import annotations
 
@@ -8,46 +8,14 @@ from collections.abc import Callable
 
 import numpy as np
 
-from models.energy import navigation as nav
 from models.energy.vectorised import CandidateEnergy
-from models.energy.weights import ACCESS_DEPTH, WEIGHTS
+from models.energy.weights import WEIGHTS
 from models.geometry import SweptBoxes
 from models.placement.base import PlacementStep
-from models.placement.candidates import OVERLAP_TOL, PlacedObject, front_boxes
+from models.placement.candidates import OVERLAP_TOL, PlacedObject
 from models.placement.greedy import Episode, hard_filter
 
 MAX_BLOCKERS, TRIES = 3, 5  # displacements
-
-
-class Reach:
-    """Which task objects the robot can reach, on the navigation grid of one room."""
-
-    def __init__(self, ep: Episode):
-        room = ep.problem.plan.room
-        self.grid = nav.Grid(room.width, room.depth)
-        self.mesh = self.grid.mesh()
-        self.start = nav.door_cells(self.grid, room)
-        self.task = {o.id for o in ep.problem.plan.objects if o.is_task}
-        self._strips: dict[tuple, np.ndarray] = {}
-
-    def strip(self, p: PlacedObject) -> np.ndarray:
-        key = (p.x, p.z, p.rotation, p.width, p.depth)
-        if key not in self._strips:
-            self._strips[key] = nav.in_box_mask(self.grid, front_boxes(p.x, p.z, p.rotation, p.width, p.depth,
-                                                                      ACCESS_DEPTH))
-        return self._strips[key]
-
-    def blocked(self, placed: list[PlacedObject]) -> np.ndarray:
-        return nav.blocked_by_boxes(self.grid, np.array([p.body for p in placed]).reshape(-1, 4))
-
-    def unreachable(self, placed: list[PlacedObject], blocked: np.ndarray | None = None) -> list[str]:
-        reach = nav.reachable_from(self.blocked(placed) if blocked is None else blocked, self.start)
-        return [p.id for p in placed if p.id in self.task and not (self.strip(p) & reach).any()]
-
-    def out_with(self, others: list[PlacedObject], base: np.ndarray, pose: PlacedObject) -> int:
-        """How many task objects are out of reach once `pose` joins `others`, whose blocked grid is `base`
-        (updated around `pose` only)."""
-        return len(self.unreachable([*others, pose], nav.blocked_with(self.mesh, base, pose.body)))
 
 
 def legal_poses(ep: Episode, obj, placed: list[PlacedObject], cands: np.ndarray, swept: SweptBoxes,

@@ -29,7 +29,7 @@ from models.geometry import SweptBoxes
 from models.placement.base import PlacementStep, StepObserver
 from models.placement.candidates import PlacedObject
 from models.placement.greedy import Episode, hard_filter
-from models.placement.moves import Reach, displacements, legal_poses, move_step
+from models.placement.moves import displacements, legal_poses, move_step
 from models.values import ConstraintPlan
 
 CHECKS = 20
@@ -179,7 +179,7 @@ class Standing:
     repair reported it) and how many task objects are out of the robot's reach (computed when first asked)."""
 
     def __init__(self, ep: Episode):
-        self.ep, self.reach, self.energy = ep, Reach(ep), ep.energy
+        self.ep, self.reach, self.energy = ep, ep.reach, ep.energy
         self._next_setup: Callable[[], CandidateEnergy] | None = None
 
     @cached_property

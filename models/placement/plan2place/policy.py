@@ -19,7 +19,7 @@ import numpy as np
 
 from models.placement.repair import repair as repair_layout
 from models.placement.base import Fixed, StepObserver
-from models.placement.greedy import Episode
+from models.placement.greedy import WALLS_OFF, Episode
 from models.placement.plan2place.features import ENERGY_GAP, Observation, choose_subset, observe
 from models.values import ConstraintPlan
 
@@ -142,13 +142,15 @@ def shipped_policy() -> NumpyPolicy:
 
 
 def place(policy: Policy, plan: ConstraintPlan, rng: np.random.Generator, use_global: bool = True,
-          fixed: Fixed | None = None, observer: StepObserver | None = None, repair: bool = True) -> Episode:
-    """One deterministic episode: each object at the most probable of its candidates (fixed poses kept),
-    then, with `repair`, the repairs (models.placement.repair)."""
+          fixed: Fixed | None = None, observer: StepObserver | None = None, repair: bool = True,
+          guard: bool = True) -> Episode:
+    """One deterministic episode: each object at the most probable of its candidates (fixed poses kept; with
+    `guard`, the most probable that walls off no task object, `Episode.guarded`), then, with `repair`, the
+    repairs (models.placement.repair)."""
     ep = Episode(plan, fixed)
     while not ep.done:
         opts = ep.options()
-        pick, probs = None, np.zeros(len(opts.feasible))
+        pick, probs, why = None, np.zeros(len(opts.feasible)), ""
         if len(opts.feasible) and opts.obj.id in ep.problem.fixed:
             pick, probs = 0, np.ones(1)
         elif len(opts.feasible):
@@ -158,9 +160,11 @@ def place(policy: Policy, plan: ConstraintPlan, rng: np.random.Generator, use_gl
             p = np.exp(logits - logits[a])
             probs[subset] = p / p.sum()
             pick = int(subset[a])
+            if guard and pick != (guarded := ep.guarded(opts, subset[np.argsort(-logits, kind="stable")])):
+                pick, why = guarded, WALLS_OFF
         ep.apply(opts, pick)
         if observer is not None:
-            observer(ep.step_record(opts, pick, probs))
+            observer(ep.step_record(opts, pick, probs, why))
     if repair:
         repair_layout(ep, observer)
     return ep

@@ -17,10 +17,11 @@ class Plan2PlaceSolver:
     name = "plan2place"
 
     def __init__(self, policy: Policy | None = None, name: str | None = None, use_global: bool = True,
-                 repair: bool = True):
+                 repair: bool = True, guard: bool = True):
         """`policy`: another network's (e.g. `agent.fast_policy` of a checkpoint); the shipped one by default.
-        `repair`: finish with the repairs (models.placement.repair)."""
-        self._policy, self._use_global, self.repair = policy, use_global, repair
+        `repair`: finish with the repairs (models.placement.repair); `guard`: the reach guard
+        (`Episode.guarded`)."""
+        self._policy, self._use_global, self.repair, self.guard = policy, use_global, repair, guard
         if name:
             self.name = name
 
@@ -30,5 +31,5 @@ class Plan2PlaceSolver:
         policy, use_global = self._policy, self._use_global
         if policy is None:
             policy, use_global = shipped_policy(), shipped_weights().use_global
-        ep = place(policy, plan, np.random.default_rng(seed), use_global, fixed, observer, self.repair)
+        ep = place(policy, plan, np.random.default_rng(seed), use_global, fixed, observer, self.repair, self.guard)
         return ep.layout(self.name, seed, time.perf_counter() - start)

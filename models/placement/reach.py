@@ -1,0 +1,56 @@
+"""Which task objects the robot can reach from the doorway (Key_NAV's test: a free cell of the object's access
+strip connected to a doorway cell), on the navigation grid of one room: what the repairs restore and what a
+placer's reach guard keeps (`Episode.guarded`)."""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+
+import numpy as np
+
+from models.energy import navigation as nav
+from models.energy.weights import ACCESS_DEPTH
+from models.placement.candidates import PlacedObject, front_boxes
+from models.placement.problem import PlacementProblem
+
+
+class Reach:
+    """Which task objects the robot can reach, on the navigation grid of one room."""
+
+    def __init__(self, problem: PlacementProblem):
+        room = problem.plan.room
+        self.grid = nav.Grid(room.width, room.depth)
+        self.mesh = self.grid.mesh()
+        self.start = nav.door_cells(self.grid, room)
+        self.task = {o.id for o in problem.plan.objects if o.is_task}
+        self._strips: dict[tuple, np.ndarray] = {}
+
+    def strip(self, p: PlacedObject) -> np.ndarray:
+        key = (p.x, p.z, p.rotation, p.width, p.depth)
+        if key not in self._strips:
+            self._strips[key] = nav.in_box_mask(self.grid, front_boxes(p.x, p.z, p.rotation, p.width, p.depth,
+                                                                      ACCESS_DEPTH))
+        return self._strips[key]
+
+    def blocked(self, placed: list[PlacedObject]) -> np.ndarray:
+        return nav.blocked_by_boxes(self.grid, np.array([p.body for p in placed]).reshape(-1, 4))
+
+    def unreachable(self, placed: list[PlacedObject], blocked: np.ndarray | None = None,
+                    reachable: np.ndarray | None = None) -> list[str]:
+        """The task objects of `placed` out of reach (`blocked`, `reachable`: its grids, if known)."""
+        if reachable is None:
+            reachable = nav.reachable_from(self.blocked(placed) if blocked is None else blocked, self.start)
+        return [p.id for p in placed if p.id in self.task and not (self.strip(p) & reachable).any()]
+
+    def out_with(self, others: list[PlacedObject], base: np.ndarray, pose: PlacedObject) -> int:
+        """How many task objects are out of reach once `pose` joins `others`, whose blocked grid is `base`
+        (updated around `pose` only)."""
+        return len(self.unreachable([*others, pose], nav.blocked_with(self.mesh, base, pose.body)))
+
+    def first_keeping(self, placed: list[PlacedObject], poses: Iterable[PlacedObject], blocked: np.ndarray,
+                      reachable: np.ndarray) -> int | None:
+        """The index of the first of `poses` (one object's, most wanted first) that leaves no more task objects
+        out of reach than `placed` leaves now (the pose's own object counted if it is a task object); None if
+        each of them walls one off. `blocked`, `reachable`: the grids of `placed` (an energy set-up's)."""
+        now = len(self.unreachable(placed, reachable=reachable))
+        return next((k for k, pose in enumerate(poses) if self.out_with(placed, blocked, pose) <= now), None)
