@@ -934,7 +934,7 @@ class StudioSession:
 
 def step_caption(steps: list[PlacementStep], shown: int, obj, room: str = "") -> str:
     """The Placement tab's line for step number `shown` (1-based) of `steps`: the object, where it went (`obj`:
-    the object as displayed, None if unplaced) and, for a repair's move, its reason."""
+    the object as displayed, None if unplaced) and, for a repair's move or a guarded choice, its reason."""
     step = steps[shown - 1]
     where = "no valid position (unplaced)" if obj is None else \
         f"x {obj.x:.2f} m, z {obj.z:.2f} m, facing {obj.rotation:.0f}°"

@@ -22,7 +22,8 @@ class PlacementStep:
     candidates: np.ndarray  # (N, 3): x, z, rotation of every candidate considered
     scores: np.ndarray  # (N,) higher is better; -inf for candidates that fail a hard filter
     terms: dict[str, float]  # energy terms of the chosen pose
-    why: str = ""  # a repair's reason for moving an object placed before (empty: the object's first placing)
+    why: str = ""  # a repair's reason for moving an object placed before, or the reach guard's for not taking
+    # the placer's most wanted pose (empty: the placer's own choice)
 
 
 StepObserver = Callable[[PlacementStep], None]

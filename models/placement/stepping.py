@@ -47,8 +47,8 @@ class Stepping:
 
 def step_record(step: PlacementStep, index: int) -> dict:
     """One step as JSON-ready data: the pose (None when the object was left out), the energy terms after it,
-    why a repair moved it, how many candidates were legal, and the `TOP` best-scored ones (x, z, rotation,
-    score; Plan2Place's scores are the policy's probabilities)."""
+    why a repair moved it (or the reach guard chose it), how many candidates were legal, and the `TOP`
+    best-scored ones (x, z, rotation, score; Plan2Place's scores are the policy's probabilities)."""
     legal = [i for i, s in enumerate(step.scores) if math.isfinite(s)]
     best = sorted(legal, key=lambda i: -step.scores[i])[:TOP]
     return {"step": index, "object": step.object_id, "x": step.x, "z": step.z, "rotation": step.rotation,
