@@ -339,12 +339,19 @@ def role_line(set_name: str, name: str, r: dict) -> str:
     return f"| {set_name} | {name} | {' | '.join(cells)} |"
 
 
-def _set_table(scored: dict, names, columns: list[str]) -> list[str]:
+def report(path: Path, lines: list[str]) -> int:
+    """Print a results script's lines and write them to `path` (its .md beside it); exit status 0."""
+    print("\n".join(lines))
+    path.write_text("\n".join(lines) + "\n")
+    return 0
+
+
+def set_table(scored: dict, names, columns: list[str], ged_digits: int = 2) -> list[str]:
     """A markdown table of object F1 / iRecall / GED, one row per set in `names`, one column per parser."""
     lines = ["| set | n | " + " | ".join(columns) + " |", "| --- | ---: |" + " --- |" * len(columns)]
     return lines + [f"| {k} | {scored[k]['rules']['n']} | " + " | ".join(
-        f"{100 * scored[k][n]['object_f1']:.2f} / {100 * scored[k][n]['irecall']:.2f} / {scored[k][n]['ged']:.2f}"
-        for n in columns) + " |" for k in names]
+        f"{100 * scored[k][n]['object_f1']:.2f} / {100 * scored[k][n]['irecall']:.2f} / "
+        f"{scored[k][n]['ged']:.{ged_digits}f}" for n in columns) + " |" for k in names]
 
 
 def main(args) -> int:
@@ -400,10 +407,10 @@ def main(args) -> int:
     decided = {**decisions(scored, rooms, strict), "fieldwise_default": fieldwise_decision(scored, fieldwise, strict)}
     columns = ["rules", "lora", *combined]
     lines += ["", f"confirmation sets ({CONFIRM_ROWS} id_train rows kept apart, as they are / TS / OS rewritten with "
-              f"seed {CONFIRM_SEED}; object F1 / iRecall / GED)", "", *_set_table(scored, CONFIRMATION, columns)]
+              f"seed {CONFIRM_SEED}; object F1 / iRecall / GED)", "", *set_table(scored, CONFIRMATION, columns)]
     lines += ["", f"fresh confirmation sets ({FRESH_ROWS} id_train rows drawn with seed {FRESH_SEED} apart from every "
               f"row read before, as they are / TS / OS rewritten with seed {FRESH_SEED}; object F1 / iRecall / GED)", "",
-              *_set_table(scored, FRESH, columns)]
+              *set_table(scored, FRESH, columns)]
     lines += ["", f"decision rule, {STRICT} as the default parser (object F1 and iRecall >= the rules' on every "
               f"confirmation set): {'met' if decided['strict_default'] else 'not met'}",
               "decision rule, MiniLM room type in the default parser (accuracy above the frequency rule's on every "

@@ -13,7 +13,8 @@ import argparse
 import sys
 from pathlib import Path
 
-from app.bench.language import POLICY_ROWS, lora_readings, read_all, readings_cache, score_parsers, unseen_train_rows
+from app.bench.language import (POLICY_ROWS, lora_readings, read_all, readings_cache, report, score_parsers,
+                                set_table, unseen_train_rows)
 
 HERE = Path(__file__).parent
 DEV_ROWS = 400
@@ -68,16 +69,10 @@ def main(argv: list[str]) -> int:
         return 0
     columns = list(scored["dev id"])
     lines = [f"Development set (decision.md): {DEV_ROWS} policy rows, TS / OS with seed {DEV_SEED}; "
-             "object F1 / iRecall / GED, room type given", "",
-             "| set | n | " + " | ".join(columns) + " |", "| --- | ---: |" + " --- |" * len(columns)]
-    lines += [f"| {name} | {r['rules']['n']} | " + " | ".join(
-        f"{100 * r[c]['object_f1']:.2f} / {100 * r[c]['irecall']:.2f} / {r[c]['ged']:.2f}" for c in columns) + " |"
-        for name, r in scored.items()]
+             "object F1 / iRecall / GED, room type given", "", *set_table(scored, scored, columns)]
     if "augmented" in adapters:
         lines += ["", f"decision rule (decision.md): {'met' if decide(scored) else 'not met'}"]
-    print("\n".join(lines))
-    (HERE / "dev.md").write_text("\n".join(lines) + "\n")
-    return 0
+    return report(HERE / "dev.md", lines)
 
 
 if __name__ == "__main__":

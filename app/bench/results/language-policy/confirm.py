@@ -14,7 +14,7 @@ import sys
 from pathlib import Path
 
 from app.bench.language import (FRESH_ROWS, FRESH_SEED, fieldwise_decision, fresh_confirmation_sets, lora_readings,
-                                readings_cache)
+                                readings_cache, report, set_table)
 
 HERE = Path(__file__).parent
 
@@ -42,14 +42,9 @@ def main(argv: list[str]) -> int:
     met = fieldwise_decision(scored, FIELDWISE, STRICT)
     lines = [f"Fresh confirmation sets (decision.md): {FRESH_ROWS} id_train rows drawn with seed {FRESH_SEED}, "
              f"TS / OS rewritten with seed {FRESH_SEED}; object F1 / iRecall / GED, room type given", "",
-             "| set | n | " + " | ".join(columns) + " |", "| --- | ---: |" + " --- |" * len(columns)]
-    lines += [f"| {k} | {r['rules']['n']} | " + " | ".join(
-        f"{100 * r[c]['object_f1']:.2f} / {100 * r[c]['irecall']:.2f} / {r[c]['ged']:.3f}" for c in columns) + " |"
-        for k, r in scored.items()]
+             *set_table(scored, scored, columns, ged_digits=3)]
     lines += ["", f"decision rule (decision.md), {FIELDWISE} as the default policy: {'met' if met else 'not met'}"]
-    print("\n".join(lines))
-    (HERE / "confirm.md").write_text("\n".join(lines) + "\n")
-    return 0
+    return report(HERE / "confirm.md", lines)
 
 
 if __name__ == "__main__":
