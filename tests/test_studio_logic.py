@@ -102,7 +102,7 @@ def test_parser_doubts_are_shown():
 def test_a_repair_step_says_why_the_object_moved():
     from frontend.session import step_caption
     from models.datasets import load_dataset
-    from models.placement.greedy import GreedySolver
+    from models.placement.greedy import WALLS_OFF, GreedySolver
 
     reasons = re.compile(r"\((meeting more of its constraints|making way for \S+|standing by its .+, as in the "
                          r"iTHOR rooms|clearing the robot's way to the task objects|left out at first: .+)\)$")
@@ -113,8 +113,11 @@ def test_a_repair_step_says_why_the_object_moved():
         placed = {p.id: p for p in layout.placements}
         captions = [step_caption(steps, k, placed.get(s.object_id)) for k, s in enumerate(steps, 1)]
         first = len(plan.objects)
-        assert all("repair" not in c for c in captions[:first]) and not any(s.why for s in steps[:first]), plan.id
+        assert all("repair" not in c for c in captions[:first]), plan.id
+        for c, step in zip(captions[:first], steps[:first]):  # a first placing says why only when guarded
+            assert step.why in ("", WALLS_OFF) and c.endswith(f"({WALLS_OFF})") == bool(step.why), c
+            seen.add("guarded" if step.why else "")
         for c in captions[first:]:
             assert "repair: placing" in c and reasons.search(c), c
             seen.add(reasons.search(c).group(1).split(" ")[0])
-    assert {"meeting", "standing"} <= seen  # the polish's and the companions' pass's moves both shown
+    assert {"meeting", "standing", "guarded"} <= seen  # the polish's, the companions' and the guard's reasons shown
