@@ -32,6 +32,24 @@ def test_plan2place_bench_chooses_checkpoints_on_varied_validation_plans(tmp_pat
     assert plan2place_main(args) == 0
     text = (tmp_path / "plan2place.md").read_text()
     assert "2 `varied` plans" in text and "| greedy |" in text and "| plan2place (" in text
+    assert "| plan2place (2880 ep) - greedy |" in text and "| plan2place (2880 ep) - plan2place_untrained |" in text
+    rows = json.loads((tmp_path / "results.json").read_text())
+    assert {(r["solver"], r["seed"]) for r in rows} >= {("greedy", 0), ("plan2place (2880 ep)", 0)}
+
+
+def test_a_paired_lead_is_called_only_when_its_interval_is_clear_of_zero():
+    import numpy as np
+    from app.bench.paired import cell, interval, paired
+    rows = [{"solver": s, "plan": p, "seed": k, "energy": e + (0.5 if s == "b" else 0.0) + 0.01 * k}
+            for s in ("a", "b") for p, e in (("p", 1.0), ("q", 2.0), ("r", 0.0)) for k in range(2)]
+    diffs = paired(rows + [{"solver": "a", "plan": "s", "seed": 0, "energy": None}], "energy", "a", "b")
+    assert diffs == {"p": [-0.5, -0.5], "q": [-0.5, -0.5], "r": [-0.5, -0.5]}  # no pair for a missing value
+    mean, lo, hi = interval(diffs, np.random.default_rng(0))
+    assert mean == lo == hi == -0.5 and cell(mean, lo, hi, higher_is_better=False).startswith("**")
+    assert cell(mean, lo, hi, higher_is_better=True).startswith("_")
+    noisy = {"p": [-1.0], "q": [1.2], "r": [-0.1]}
+    assert not cell(*interval(noisy, np.random.default_rng(0)), higher_is_better=False).startswith(("**", "_"))
+    assert np.isnan(interval({}, np.random.default_rng(0))[0])  # nothing to compare earns no lead
 
 
 def test_pto_medians_come_from_the_stored_runs(tmp_path):

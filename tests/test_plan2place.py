@@ -86,6 +86,49 @@ def test_teacher_judges_candidates_by_greedy_completion():
     assert torch.isclose(imitating["policy_loss"], expected - 0.5 * torch.stack(best).mean())
 
 
+def test_guarded_training_never_samples_a_pose_that_walls_off_a_task_object(monkeypatch):
+    """`--guard`: the candidates the solver's reach guard would refuse are masked out of the sampled policy
+    (zero probability, never judged by the teacher); `Episode.keeping` is the guard's test for each."""
+    plan = next(r.plan for r in load_dataset("seen") if r.plan.id == "seen-00395")  # greedy walls one off
+    ep, rng = Episode(plan), np.random.default_rng(0)
+    refused = 0
+    while not ep.done:  # greedy's episode, as `GreedySolver(guard=False)` places it
+        opts = ep.options()
+        order = np.argsort(opts.terms["total"] + rng.uniform(0, 1e-9, len(opts.feasible)), kind="stable")
+        keeps = ep.keeping(opts, order)
+        assert ep.guarded(opts, order) == order[int(np.argmax(keeps)) if keeps.any() else 0]
+        refused += int(not keeps[0])
+        ep.apply(opts, int(order[0]))
+    assert refused  # the greedy pick walls a task object off at some step
+    torch.manual_seed(0)
+    net = Plan2PlaceNet(NetConfig(hidden=16))
+    steps = []  # per guarded step: (did any candidate keep reach, task objects out of reach before, after)
+    keeping, apply = Episode.keeping, Episode.apply
+
+    def keeping_spy(ep, *args):
+        keeps = keeping(ep, *args)
+        steps.append((bool(keeps.any()), len(ep.reach.unreachable(ep.placed)), ep))
+        return keeps
+
+    def apply_spy(ep, *args):  # the rollout's own episode, not the teacher's forks
+        reward = apply(ep, *args)
+        if steps and steps[-1][-1] is ep:
+            steps[-1] = (*steps[-1][:2], len(ep.reach.unreachable(ep.placed)))
+        return reward
+
+    monkeypatch.setattr(Episode, "keeping", keeping_spy)
+    monkeypatch.setattr(Episode, "apply", apply_spy)
+    for seed in range(6):
+        steps.clear()
+        _, trace = rollout(net, plan, np.random.default_rng(seed), teacher=2, guard=True)
+        assert all(torch.isfinite(t["judged"][0]).all() for t in trace)  # no refused pose judged
+        assert len(steps) == len(trace) and all(after <= before for ok, before, after in steps if ok)
+    assert any(not ok for ok, *_ in steps)  # the case the mask leaves alone: every candidate walls one off
+    out = losses(trace, True, imitate=1.0)
+    assert torch.isfinite(out["loss"])
+    out["loss"].backward()
+
+
 def test_training_starts_from_exported_weights_of_the_same_network_only(tmp_path):
     cfg = TrainConfig(episodes=2, batch=2, checkpoint_every=2, net=NetConfig(hidden=16).as_dict())
     export_weights(train(cfg, tmp_path / "a", progress=False), tmp_path / "a.npz")

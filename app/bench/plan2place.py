@@ -14,12 +14,14 @@ the exact energy of the final layout (the RL objective; lower is better), the pl
 
 from __future__ import annotations
 
+import json
 import statistics
 import time
 from pathlib import Path
 
 import numpy as np
 
+from app.bench.paired import cell, interval, paired
 from app.bench.placement import pick_records, score
 from models.datasets.varied import NAME as VARIED, varied_plan
 from models.placement import get_solver
@@ -47,9 +49,27 @@ def evaluate(solvers: list, plans: list, seeds: int) -> dict[str, list[dict]]:
                 t = time.perf_counter()
                 layout = solver.solve(plan, seed=seed)
                 elapsed = time.perf_counter() - t
-                rows.setdefault(solver.name, []).append({**score(plan, layout),
+                rows.setdefault(solver.name, []).append({**score(plan, layout), "solver": solver.name,
+                                                         "plan": plan.id, "seed": seed,
                                                          "pto_s": elapsed / max(len(plan.objects), 1)})
     return rows
+
+
+PAIRED = (("energy", 1, False, 3), ("constraint_satisfaction", 100, True, 2), ("realism", 100, True, 2))
+
+
+def paired_table(rows: dict[str, list[dict]], runs: list[str], baselines: list[str]) -> str:
+    """Each trained run minus each baseline on the same (plan, seed) runs, with 95 % bootstrap intervals over
+    plans (app.bench.paired): is a lead in the table above more than the plans' noise?"""
+    flat, rng = [r for rs in rows.values() for r in rs], np.random.default_rng(0)
+    lines = ["| run - baseline | " + " | ".join(f"{m} ({'higher' if up else 'lower'} is better)"
+                                                for m, _, up, _ in PAIRED) + " |", "| --- |" + " --- |" * len(PAIRED)]
+    for run in runs:
+        for base in baselines:
+            cells = [cell(*(scale * v for v in interval(paired(flat, m, run, base), rng)), up, digits)
+                     for m, scale, up, digits in PAIRED]
+            lines.append(f"| {run} - {base} | " + " | ".join(cells) + " |")
+    return "\n".join(lines)
 
 
 def table(rows: dict[str, list[dict]]) -> str:
@@ -75,12 +95,17 @@ def main(args) -> int:
     # what the repairs (models.placement.repair) add, for greedy and the first run
     solvers += [GreedySolver(repair=False), solver_for(runs[0], repair=False)]
     rows = evaluate(solvers, plans, args.seeds)
+    baselines = [s.name for s in solvers[:2]]
     text = (f"plan2place bench on {len(plans)} `{args.dataset}` plans x {args.seeds} seed(s); energy = exact "
-            f"energy of the final layout (lower is better), metrics x 100\n\n{table(rows)}\n")
+            f"energy of the final layout (lower is better), metrics x 100\n\n{table(rows)}\n\n"
+            f"paired on the same runs, mean difference [95 % bootstrap interval over plans]; **bold**: the run "
+            f"is better with the interval clear of 0, _italic_: worse\n\n"
+            f"{paired_table(rows, [s.name for s in solvers[2:2 + len(runs)]], baselines)}\n")
     print(text)
     if args.out:
         Path(args.out).mkdir(parents=True, exist_ok=True)
         (Path(args.out) / "plan2place.md").write_text(text)
+        (Path(args.out) / "results.json").write_text(json.dumps([r for rs in rows.values() for r in rs]))
     return 0
 
 

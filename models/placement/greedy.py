@@ -160,6 +160,14 @@ class Episode:
         kept = self.reach.first_keeping(self.placed, poses, self.setup.blocked, self.setup.reach)
         return int(order[0 if kept is None else kept])
 
+    def keeping(self, opts: Options, ks: np.ndarray) -> np.ndarray:
+        """For each feasible candidate `ks` (indices into `opts.feasible`): does placing it leave no more task
+        objects out of the robot's reach? The reach guard's test for every candidate at once (training's
+        action mask, `agent.rollout`)."""
+        setup, now = self.setup, len(self.reach.unreachable(self.placed, reachable=self.setup.reach))
+        poses = (self.scorer.place(opts.obj, *(float(v) for v in opts.cands[opts.feasible[k]])) for k in ks)
+        return np.array([self.reach.out_with(self.placed, setup.blocked, pose) <= now for pose in poses], bool)
+
     def fork(self) -> Episode:
         """An independent copy of this episode (its energy set-ups are immutable and are shared)."""
         twin = copy.copy(self)

@@ -54,6 +54,7 @@ class TrainConfig:
     teacher: int = 0  # candidates per step judged by a greedy completion (0: advantages from the return)
     imitate: float = 0.0  # weight of the cross-entropy towards the teacher's best judged candidate
     init: str = ""  # start from these weights (an exported plan2place.npz) instead of random ones
+    guard: bool = False  # sample with the reach guard as an action mask, as the solver places (not in the paper)
 
 
 def semantic_of(ep: Episode) -> tuple[torch.Tensor, float]:
@@ -74,9 +75,10 @@ def judge(ep: Episode, opts, picks: list[int]) -> np.ndarray:
 
 
 def rollout(net: Plan2PlaceNet, plan, rng: np.random.Generator, use_global: bool = True,
-            teacher: int = 0) -> tuple[Episode, list[dict]]:
+            teacher: int = 0, guard: bool = False) -> tuple[Episode, list[dict]]:
     """One training episode: actions drawn from the policy, with gradients (the solver's deterministic
-    episode, without torch, is `policy.place`)."""
+    episode, without torch, is `policy.place`). With `guard`, the candidates that would wall off a task
+    object are masked out of the policy (unless all would: the solver's guard then takes the most wanted)."""
     ep = Episode(plan)
     trace = []
     while not ep.done:
@@ -87,12 +89,16 @@ def rollout(net: Plan2PlaceNet, plan, rng: np.random.Generator, use_global: bool
             obs = observe(ep, opts, subset, use_global)
             sem, r_vlm = semantic_of(ep)
             logits, value = net(obs, sem)
+            allowed = np.ones(len(subset), bool)
+            if guard and (keeps := ep.keeping(opts, subset)).any():
+                allowed = keeps
+                logits = logits.masked_fill(torch.from_numpy(~keeps), float("-inf"))
             dist = torch.distributions.Categorical(logits=logits)
             a = int(dist.sample())
             trace.append({"logp": dist.log_prob(torch.tensor(a)), "entropy": dist.entropy(), "value": value,
                           "r_vlm": r_vlm, "reward": 0.0})
             if teacher:  # the subset is sorted by immediate energy: its first `teacher` and the sampled one
-                judged = sorted(set(range(min(teacher, len(subset)))) | {a})
+                judged = sorted(set(np.flatnonzero(allowed)[:teacher].tolist()) | {a})
                 finals = judge(ep, opts, [int(subset[j]) for j in judged])
                 trace[-1]["judged"] = (dist.log_prob(torch.tensor(judged)),
                                        torch.from_numpy(finals.mean() - finals).float())
@@ -240,7 +246,7 @@ def train(cfg: TrainConfig, out_dir: Path, progress: bool = True) -> Path:
         for episode in range(start, cfg.episodes):
             t0 = time.perf_counter()
             plan = plan_of(episode)
-            ep, trace = rollout(net, plan, rng, use_global=cfg.use_global, teacher=cfg.teacher)
+            ep, trace = rollout(net, plan, rng, use_global=cfg.use_global, teacher=cfg.teacher, guard=cfg.guard)
             batch.append((ep, trace, plan, t0))
             if len(batch) == cfg.batch or episode == cfg.episodes - 1:
                 parts = [losses(tr, cfg.aux, cfg.imitate) for _, tr, _, _ in batch if tr]

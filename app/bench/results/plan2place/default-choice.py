@@ -8,28 +8,13 @@ from pathlib import Path
 
 import numpy as np
 
+from app.bench.paired import cell, interval, paired
+
 RESULTS = Path(__file__).resolve().parents[1]
 SETS = ("seen", "unseen_a", "unseen_b", "dense", "human")
 # metric, scale, whether higher is better
 METRICS = (("cnt", 100, True), ("key_nav", 100, True), ("nav", 100, True), ("constraint_satisfaction", 100, True),
            ("realism", 100, True), ("energy", 1, False), ("pto", 1000, False))
-
-
-def paired(rows: list[dict], metric: str) -> dict[str, list[float]]:
-    """plan -> differences plan2place - dfs over its seeds (pairs where either value is missing are dropped)."""
-    by = {(r["solver"], r["plan"], r["seed"]): r.get(metric) for r in rows}
-    out: dict[str, list[float]] = {}
-    for (solver, plan, seed), v in by.items():
-        w = by.get(("dfs", plan, seed))
-        if solver == "plan2place" and v is not None and w is not None:
-            out.setdefault(plan, []).append(v - w)
-    return out
-
-
-def interval(diffs: dict[str, list[float]], rng: np.random.Generator, draws: int = 2000) -> tuple[float, float, float]:
-    plans = list(diffs)
-    means = [np.mean([d for p in rng.choice(plans, len(plans)) for d in diffs[p]]) for _ in range(draws)]
-    return float(np.mean([d for p in plans for d in diffs[p]])), *np.percentile(means, [2.5, 97.5])
 
 
 def main() -> str:
@@ -43,10 +28,7 @@ def main() -> str:
         rows = json.loads((RESULTS / f"placement-{s}" / "results.json").read_text())
         cells = []
         for metric, scale, up in METRICS:
-            mean, lo, hi = (scale * v for v in interval(paired(rows, metric), rng))
-            text = f"{mean:+.2f} [{lo:+.2f}, {hi:+.2f}]"
-            better, worse = (lo > 0, hi < 0) if up else (hi < 0, lo > 0)
-            cells.append(f"**{text}**" if better else f"_{text}_" if worse else text)
+            cells.append(cell(*(scale * v for v in interval(paired(rows, metric, "plan2place", "dfs"), rng)), up))
         lines.append(f"| {s} | " + " | ".join(cells) + " |")
     return "\n".join(lines) + "\n"
 
