@@ -1,0 +1,52 @@
+"""Plan2Place against the best other solver of each metric, paired on the placement bench's stored runs: for each
+set and target metric, the solver with the best mean besides Plan2Place, and plan2place - that solver over the
+same (plan, seed) pairs with a 95 % bootstrap interval over plans (app.bench.paired). A lead or a gap whose
+interval holds 0 is within the plans' noise. Reads app/bench/results/placement-*/results.json, writes targets.md
+beside this script: python app/bench/results/plan2place/targets.py"""
+
+import json
+from pathlib import Path
+
+import numpy as np
+
+from app.bench.paired import cell, interval, paired
+
+RESULTS = Path(__file__).resolve().parents[1]
+SETS = ("seen", "unseen_a", "unseen_b", "dense", "human")
+# the issue's target metrics: metric, scale, whether higher is better, digits
+METRICS = (("cnt", 100, True, 2), ("key_nav", 100, True, 2), ("constraint_satisfaction", 100, True, 2),
+           ("realism", 100, True, 2), ("energy", 1, False, 3))
+
+
+def best_other(rows: list[dict], metric: str, up: bool) -> str:
+    """The solver other than Plan2Place with the best mean of `metric` (a set's people's layouts excepted)."""
+    means = {}
+    for s in {r["solver"] for r in rows} - {"plan2place", "human"}:
+        vals = [r[metric] for r in rows if r["solver"] == s and r.get(metric) is not None]
+        if vals:
+            means[s] = float(np.mean(vals))
+    return (max if up else min)(means, key=means.get)
+
+
+def main() -> str:
+    rng = np.random.default_rng(0)
+    lines = ["Plan2Place - the best other solver of each metric (named), mean over the same (plan, seed) pairs, "
+             "[95 % bootstrap interval over plans]; metrics x 100, energy as is; **bold** = Plan2Place better with the "
+             "interval clear of 0, _italic_ = worse with the interval clear of 0, plain = within the plans' noise.", "",
+             "| set | " + " | ".join(f"{m} ({'higher' if up else 'lower'} is better)" for m, _, up, _ in METRICS) + " |",
+             "| --- |" + " --- |" * len(METRICS)]
+    for s in SETS:
+        rows = json.loads((RESULTS / f"placement-{s}" / "results.json").read_text())
+        cells = []
+        for metric, scale, up, digits in METRICS:
+            other = best_other(rows, metric, up)
+            diff = interval(paired(rows, metric, "plan2place", other), rng)
+            cells.append(f"{cell(*(scale * v for v in diff), up, digits)} vs {other}")
+        lines.append(f"| {s} | " + " | ".join(cells) + " |")
+    return "\n".join(lines) + "\n"
+
+
+if __name__ == "__main__":
+    text = main()
+    (Path(__file__).parent / "targets.md").write_text(text)
+    print(text)
