@@ -33,6 +33,7 @@ def test_plan2place_bench_chooses_checkpoints_on_varied_validation_plans(tmp_pat
     text = (tmp_path / "plan2place.md").read_text()
     assert "2 `varied` plans" in text and "| greedy |" in text and "| plan2place (" in text
     assert "| plan2place (2880 ep) - greedy |" in text and "| plan2place (2880 ep) - plan2place_untrained |" in text
+    assert "| plan2place (2880 ep), no repair - plan2place_untrained, no repair |" in text  # the placers alone
     rows = json.loads((tmp_path / "results.json").read_text())
     assert {(r["solver"], r["seed"]) for r in rows} >= {("greedy", 0), ("plan2place (2880 ep)", 0)}
 

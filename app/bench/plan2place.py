@@ -91,16 +91,18 @@ def main(args) -> int:
     else:
         plans = [r.plan for r in pick_records(args.dataset, args.n)]
     runs = [r for r in (args.runs or "models/weights/plan2place/plan2place.npz").split(",") if r]
-    solvers = [get_solver("greedy"), get_solver("plan2place_untrained")] + [solver_for(r) for r in runs]
-    # what the repairs (models.placement.repair) add, for greedy and the first run
-    solvers += [GreedySolver(repair=False), solver_for(runs[0], repair=False)]
-    rows = evaluate(solvers, plans, args.seeds)
-    baselines = [s.name for s in solvers[:2]]
+    from models.placement.plan2place.solver import untrained_solver
+    baselines = [get_solver("greedy"), untrained_solver()]
+    trained = [solver_for(r) for r in runs]
+    # the placers alone, without the repairs (models.placement.repair): where the policy's own choices show
+    bare = [GreedySolver(repair=False), untrained_solver(repair=False), solver_for(runs[0], repair=False)]
+    rows = evaluate(baselines + trained + bare, plans, args.seeds)
     text = (f"plan2place bench on {len(plans)} `{args.dataset}` plans x {args.seeds} seed(s); energy = exact "
             f"energy of the final layout (lower is better), metrics x 100\n\n{table(rows)}\n\n"
             f"paired on the same runs, mean difference [95 % bootstrap interval over plans]; **bold**: the run "
             f"is better with the interval clear of 0, _italic_: worse\n\n"
-            f"{paired_table(rows, [s.name for s in solvers[2:2 + len(runs)]], baselines)}\n")
+            f"{paired_table(rows, [s.name for s in trained], [s.name for s in baselines])}\n\n"
+            f"{paired_table(rows, [bare[2].name], [s.name for s in bare[:2]])}\n")
     print(text)
     if args.out:
         Path(args.out).mkdir(parents=True, exist_ok=True)

@@ -75,10 +75,8 @@ def _plan2place() -> Solver:
 
 
 def _plan2place_untrained() -> Solver:
-    """The Plan2Place network with its initial weights (seed 0): what training adds is measured against it."""
-    from models.placement.plan2place.agent import fast_policy, untrained_network
-    from models.placement.plan2place.solver import Plan2PlaceSolver
-    return Plan2PlaceSolver(fast_policy(untrained_network()), name="plan2place_untrained")
+    from models.placement.plan2place.solver import untrained_solver
+    return untrained_solver()
 
 
 SOLVERS: dict[str, Callable[[], Solver]] = {"greedy": _greedy, "plan2place": _plan2place,

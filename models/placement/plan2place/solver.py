@@ -33,3 +33,11 @@ class Plan2PlaceSolver:
             policy, use_global = shipped_policy(), shipped_weights().use_global
         ep = place(policy, plan, np.random.default_rng(seed), use_global, fixed, observer, self.repair, self.guard)
         return ep.layout(self.name, seed, time.perf_counter() - start)
+
+
+def untrained_solver(repair: bool = True) -> Plan2PlaceSolver:
+    """The Plan2Place network with its initial weights (seed 0), `plan2place_untrained`: what training adds is
+    measured against it (with `repair` False, the placer and its guard alone)."""
+    from models.placement.plan2place.agent import fast_policy, untrained_network  # torch, only here
+    return Plan2PlaceSolver(fast_policy(untrained_network()), repair=repair,
+                            name="plan2place_untrained" + ("" if repair else ", no repair"))
