@@ -35,3 +35,22 @@ def cell(mean: float, lo: float, hi: float, higher_is_better: bool, digits: int 
     text = f"{mean:+.{digits}f} [{lo:+.{digits}f}, {hi:+.{digits}f}]"
     better, worse = (lo > 0, hi < 0) if higher_is_better else (hi < 0, lo > 0)
     return f"**{text}**" if better else f"_{text}_" if worse else text
+
+
+def stored_table(results, sets, metrics, other, caption: str, name_other: bool = False) -> str:
+    """A set x metric table of plan2place - `other(rows, metric, higher_is_better)` (a solver's name) from the
+    placement bench's stored runs (`results`/placement-<set>/results.json); `metrics`: (name, scale, higher is
+    better, digits); with `name_other`, each cell names the solver it is paired with."""
+    import json
+    rng = np.random.default_rng(0)
+    lines = [caption, "", "| set | " + " | ".join(f"{m} ({'higher' if up else 'lower'} is better)"
+                                                  for m, _, up, _ in metrics) + " |", "| --- |" + " --- |" * len(metrics)]
+    for s in sets:
+        rows = json.loads((results / f"placement-{s}" / "results.json").read_text())
+        cells = []
+        for metric, scale, up, digits in metrics:
+            name = other(rows, metric, up)
+            text = cell(*(scale * v for v in interval(paired(rows, metric, "plan2place", name), rng)), up, digits)
+            cells.append(f"{text} vs {name}" if name_other else text)
+        lines.append(f"| {s} | " + " | ".join(cells) + " |")
+    return "\n".join(lines) + "\n"

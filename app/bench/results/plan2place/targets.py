@@ -4,12 +4,11 @@ same (plan, seed) pairs with a 95 % bootstrap interval over plans (app.bench.pai
 interval holds 0 is within the plans' noise. Reads app/bench/results/placement-*/results.json, writes targets.md
 beside this script: python app/bench/results/plan2place/targets.py"""
 
-import json
 from pathlib import Path
 
 import numpy as np
 
-from app.bench.paired import cell, interval, paired
+from app.bench.paired import stored_table
 
 RESULTS = Path(__file__).resolve().parents[1]
 SETS = ("seen", "unseen_a", "unseen_b", "dense", "human")
@@ -21,7 +20,7 @@ METRICS = (("cnt", 100, True, 2), ("key_nav", 100, True, 2), ("constraint_satisf
 def best_other(rows: list[dict], metric: str, up: bool) -> str:
     """The solver other than Plan2Place with the best mean of `metric` (a set's people's layouts excepted)."""
     means = {}
-    for s in {r["solver"] for r in rows} - {"plan2place", "human"}:
+    for s in sorted({r["solver"] for r in rows} - {"plan2place", "human"}):  # ties: the first by name
         vals = [r[metric] for r in rows if r["solver"] == s and r.get(metric) is not None]
         if vals:
             means[s] = float(np.mean(vals))
@@ -29,21 +28,11 @@ def best_other(rows: list[dict], metric: str, up: bool) -> str:
 
 
 def main() -> str:
-    rng = np.random.default_rng(0)
-    lines = ["Plan2Place - the best other solver of each metric (named), mean over the same (plan, seed) pairs, "
-             "[95 % bootstrap interval over plans]; metrics x 100, energy as is; **bold** = Plan2Place better with the "
-             "interval clear of 0, _italic_ = worse with the interval clear of 0, plain = within the plans' noise.", "",
-             "| set | " + " | ".join(f"{m} ({'higher' if up else 'lower'} is better)" for m, _, up, _ in METRICS) + " |",
-             "| --- |" + " --- |" * len(METRICS)]
-    for s in SETS:
-        rows = json.loads((RESULTS / f"placement-{s}" / "results.json").read_text())
-        cells = []
-        for metric, scale, up, digits in METRICS:
-            other = best_other(rows, metric, up)
-            diff = interval(paired(rows, metric, "plan2place", other), rng)
-            cells.append(f"{cell(*(scale * v for v in diff), up, digits)} vs {other}")
-        lines.append(f"| {s} | " + " | ".join(cells) + " |")
-    return "\n".join(lines) + "\n"
+    return stored_table(RESULTS, SETS, METRICS, best_other,
+                        "Plan2Place - the best other solver of each metric (named), mean over the same (plan, seed) "
+                        "pairs, [95 % bootstrap interval over plans]; metrics x 100, energy as is; **bold** = Plan2Place "
+                        "better with the interval clear of 0, _italic_ = worse with the interval clear of 0, plain = "
+                        "within the plans' noise.", name_other=True)
 
 
 if __name__ == "__main__":
