@@ -1,9 +1,8 @@
 """Front strips blocked: in how many places a solver's layout puts an object in another's front clearance (the
 strip a fridge door, a drawer or a seat needs; tied pairs such as a chair at its table excepted), beside the
-constraints it meets. The baselines treat that clearance as soft (MILP and Z3: a penalty; DFS: not at all),
-the step-wise placers as a hard filter relaxed only when nothing else is legal; this shows what that costs and
-buys. 16 plans per set off the benchmarks' samples (`i % step == step // 2`), 2 seeds. Run from the root:
-python app/bench/results/plan2place/blocked-fronts.py dense,seen dfs,milp,z3,greedy,plan2place > blocked-fronts.md"""
+constraints it meets. MILP and Z3 treat that clearance as soft (a penalty); DFS, greedy and Plan2Place as a hard
+filter relaxed only for an object with no other legal pose. This shows what each way costs and buys. 16 plans per set off the benchmarks' samples (`i % step == step // 2`), 2 seeds. Run from the root:
+python app/bench/results/plan2place/blocked-fronts.py dense,seen dfs,milp,z3,greedy,plan2place | grep '^|' > blocked-fronts.md"""
 
 import sys
 
