@@ -138,6 +138,9 @@ def test_training_starts_from_exported_weights_of_the_same_network_only(tmp_path
     assert all(torch.allclose(v, trained[k].half().float()) for k, v in net.state_dict().items())
     with pytest.raises(ValueError, match="network configuration"):
         start_from(Plan2PlaceNet(NetConfig(hidden=32)), tmp_path / "a.npz")
+    softer = Plan2PlaceNet(NetConfig(hidden=16, prior_temp=0.2))  # the energy prior's scale is not a weight
+    start_from(softer, tmp_path / "a.npz")
+    assert all(torch.equal(v, net.state_dict()[k]) for k, v in softer.state_dict().items())
 
 
 def test_training_is_seeded_and_resumes(tmp_path):

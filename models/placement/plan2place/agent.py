@@ -184,9 +184,10 @@ def losses(trace: list[dict], aux: bool, imitate: float = 0.0) -> dict[str, torc
 
 
 def start_from(net: Plan2PlaceNet, weights: Path) -> None:
-    """Load exported weights (.npz) into a fresh network of the same configuration (fine-tuning)."""
+    """Load exported weights (.npz) into a fresh network of the same configuration (fine-tuning); its
+    `prior_temp` may differ, for it scales the energy prior of the logits and is not a weight."""
     w = Weights.load(weights)
-    if w.config["net"] != net.cfg.as_dict():
+    if {**w.config["net"], "prior_temp": None} != {**net.cfg.as_dict(), "prior_temp": None}:
         raise ValueError(f"{weights} has the network configuration {w.config['net']}, not this run's "
                          f"{net.cfg.as_dict()}")
     _load(net, w)
