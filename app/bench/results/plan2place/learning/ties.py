@@ -2,15 +2,20 @@
 greedy's choice (takes a candidate of higher immediate energy than the lowest) and by how much, how often several
 candidates tie for the lowest immediate energy, and how often it takes another of those than greedy's first; for the
 shipped and the untrained network, on 16 plans per set off the benchmarks' samples x 2 seeds. From the root:
-python app/bench/results/plan2place/learning/ties.py seen,unseen_a,unseen_b,dense,human > ties.md"""
+python app/bench/results/plan2place/learning/ties.py seen,unseen_a,unseen_b,dense,human [RUN.npz,...] > ties.md"""
 import sys
+from pathlib import Path
+
 import numpy as np
+
 from models.datasets import load_dataset
 from models.placement.greedy import Episode
+from models.placement.plan2place.agent import fast_policy, load_run, untrained_network
 from models.placement.plan2place.features import choose_subset, observe
-from models.placement.plan2place.policy import shipped_policy, shipped_weights
-from models.placement.plan2place.agent import fast_policy, untrained_network
+from models.placement.plan2place.policy import shipped_policy
 pols = {"trained": shipped_policy(), "untrained": fast_policy(untrained_network())}
+for run in (sys.argv[2].split(",") if len(sys.argv) > 2 else []):  # further runs' weights, by their file name
+    pols[Path(run).stem] = fast_policy(load_run(Path(run))[0])
 for ds in sys.argv[1].split(","):
     recs = load_dataset(ds, "validation" if ds == "seen" else None); k = max(len(recs) // 20, 1)
     plans = [r.plan for i, r in enumerate(recs) if i % k == k // 2][:16]
