@@ -37,14 +37,19 @@ def cell(mean: float, lo: float, hi: float, higher_is_better: bool, digits: int 
     return f"**{text}**" if better else f"_{text}_" if worse else text
 
 
+def header(first: str, metrics) -> list[str]:
+    """A paired table's two head lines: `first` column, then each metric (name, scale, higher is better, ...)."""
+    return ["| " + first + " | " + " | ".join(f"{m[0]} ({'higher' if m[2] else 'lower'} is better)" for m in metrics)
+            + " |", "| --- |" + " --- |" * len(metrics)]
+
+
 def stored_table(results, sets, metrics, other, caption: str, name_other: bool = False) -> str:
     """A set x metric table of plan2place - `other(rows, metric, higher_is_better)` (a solver's name) from the
     placement bench's stored runs (`results`/placement-<set>/results.json); `metrics`: (name, scale, higher is
     better, digits); with `name_other`, each cell names the solver it is paired with."""
     import json
     rng = np.random.default_rng(0)
-    lines = [caption, "", "| set | " + " | ".join(f"{m} ({'higher' if up else 'lower'} is better)"
-                                                  for m, _, up, _ in metrics) + " |", "| --- |" + " --- |" * len(metrics)]
+    lines = [caption, "", *header("set", metrics)]
     for s in sets:
         rows = json.loads((results / f"placement-{s}" / "results.json").read_text())
         cells = []

@@ -21,7 +21,7 @@ from pathlib import Path
 
 import numpy as np
 
-from app.bench.paired import cell, interval, paired
+from app.bench.paired import cell, header, interval, paired
 from app.bench.placement import pick_records, score
 from models.datasets.varied import NAME as VARIED, varied_plan
 from models.placement import get_solver
@@ -58,12 +58,10 @@ def evaluate(solvers: list, plans: list, seeds: int) -> dict[str, list[dict]]:
 PAIRED = (("energy", 1, False, 3), ("constraint_satisfaction", 100, True, 2), ("realism", 100, True, 2))
 
 
-def paired_table(rows: dict[str, list[dict]], runs: list[str], baselines: list[str]) -> str:
-    """Each trained run minus each baseline on the same (plan, seed) runs, with 95 % bootstrap intervals over
-    plans (app.bench.paired): is a lead in the table above more than the plans' noise?"""
-    flat, rng = [r for rs in rows.values() for r in rs], np.random.default_rng(0)
-    lines = ["| run - baseline | " + " | ".join(f"{m} ({'higher' if up else 'lower'} is better)"
-                                                for m, _, up, _ in PAIRED) + " |", "| --- |" + " --- |" * len(PAIRED)]
+def paired_table(flat: list[dict], runs: list[str], baselines: list[str]) -> str:
+    """Each trained run minus each baseline on the same (plan, seed) runs (`flat`: every solver's rows), with 95 %
+    bootstrap intervals over plans (app.bench.paired): is a lead in the table above more than the plans' noise?"""
+    rng, lines = np.random.default_rng(0), header("run - baseline", PAIRED)
     for run in runs:
         for base in baselines:
             cells = [cell(*(scale * v for v in interval(paired(flat, m, run, base), rng)), up, digits)
@@ -97,17 +95,18 @@ def main(args) -> int:
     # the placers alone, without the repairs (models.placement.repair): where the policy's own choices show
     bare = [GreedySolver(repair=False), untrained_solver(repair=False), solver_for(runs[0], repair=False)]
     rows = evaluate(baselines + trained + bare, plans, args.seeds)
+    flat = [r for rs in rows.values() for r in rs]
     text = (f"plan2place bench on {len(plans)} `{args.dataset}` plans x {args.seeds} seed(s); energy = exact "
             f"energy of the final layout (lower is better), metrics x 100\n\n{table(rows)}\n\n"
             f"paired on the same runs, mean difference [95 % bootstrap interval over plans]; **bold**: the run "
             f"is better with the interval clear of 0, _italic_: worse\n\n"
-            f"{paired_table(rows, [s.name for s in trained], [s.name for s in baselines])}\n\n"
-            f"{paired_table(rows, [bare[2].name], [s.name for s in bare[:2]])}\n")
+            f"{paired_table(flat, [s.name for s in trained], [s.name for s in baselines])}\n\n"
+            f"{paired_table(flat, [bare[2].name], [s.name for s in bare[:2]])}\n")
     print(text)
     if args.out:
         Path(args.out).mkdir(parents=True, exist_ok=True)
         (Path(args.out) / "plan2place.md").write_text(text)
-        (Path(args.out) / "results.json").write_text(json.dumps([r for rs in rows.values() for r in rs]))
+        (Path(args.out) / "results.json").write_text(json.dumps(flat))
     return 0
 
 

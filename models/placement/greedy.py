@@ -156,17 +156,19 @@ class Episode:
         one off. A step-wise placer's energy sees only the objects placed so far, so a pose that walls off an
         access strip can look best."""
         order = order[:GUARD_TRIES]
-        poses = (self.scorer.place(opts.obj, *(float(v) for v in opts.cands[opts.feasible[k]])) for k in order)
-        kept = self.reach.first_keeping(self.placed, poses, self.setup.blocked, self.setup.reach)
+        kept = self.reach.first_keeping(self.placed, self._poses(opts, order), self.setup.blocked, self.setup.reach)
         return int(order[0 if kept is None else kept])
 
     def keeping(self, opts: Options, ks: np.ndarray) -> np.ndarray:
         """For each feasible candidate `ks` (indices into `opts.feasible`): does placing it leave no more task
         objects out of the robot's reach? The reach guard's test for every candidate at once (training's
         action mask, `agent.rollout`)."""
-        setup, now = self.setup, len(self.reach.unreachable(self.placed, reachable=self.setup.reach))
-        poses = (self.scorer.place(opts.obj, *(float(v) for v in opts.cands[opts.feasible[k]])) for k in ks)
-        return np.array([self.reach.out_with(self.placed, setup.blocked, pose) <= now for pose in poses], bool)
+        return np.fromiter(self.reach.keeping(self.placed, self._poses(opts, ks), self.setup.blocked,
+                                              self.setup.reach), bool, len(ks))
+
+    def _poses(self, opts: Options, ks: np.ndarray):
+        """The placed objects of the feasible candidates `ks`, made as they are asked for."""
+        return (self.scorer.place(opts.obj, *(float(v) for v in opts.cands[opts.feasible[k]])) for k in ks)
 
     def fork(self) -> Episode:
         """An independent copy of this episode (its energy set-ups are immutable and are shared)."""

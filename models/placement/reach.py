@@ -4,7 +4,7 @@ placer's reach guard keeps (`Episode.guarded`)."""
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Iterable, Iterator
 
 import numpy as np
 
@@ -47,10 +47,16 @@ class Reach:
         (updated around `pose` only)."""
         return len(self.unreachable([*others, pose], nav.blocked_with(self.mesh, base, pose.body)))
 
+    def keeping(self, placed: list[PlacedObject], poses: Iterable[PlacedObject], blocked: np.ndarray,
+                reachable: np.ndarray) -> Iterator[bool]:
+        """For each of `poses` (one object's), lazily: does it leave no more task objects out of reach than
+        `placed` leaves now (the pose's own object counted if it is a task object)? `blocked`, `reachable`: the
+        grids of `placed` (an energy set-up's)."""
+        now = len(self.unreachable(placed, reachable=reachable))
+        return (self.out_with(placed, blocked, pose) <= now for pose in poses)
+
     def first_keeping(self, placed: list[PlacedObject], poses: Iterable[PlacedObject], blocked: np.ndarray,
                       reachable: np.ndarray) -> int | None:
-        """The index of the first of `poses` (one object's, most wanted first) that leaves no more task objects
-        out of reach than `placed` leaves now (the pose's own object counted if it is a task object); None if
-        each of them walls one off. `blocked`, `reachable`: the grids of `placed` (an energy set-up's)."""
-        now = len(self.unreachable(placed, reachable=reachable))
-        return next((k for k, pose in enumerate(poses) if self.out_with(placed, blocked, pose) <= now), None)
+        """The index of the first of `poses` (most wanted first) that `keeping` keeps; None if each of them
+        walls a task object off."""
+        return next((k for k, ok in enumerate(self.keeping(placed, poses, blocked, reachable)) if ok), None)

@@ -18,24 +18,22 @@ if mode == "pair":
         diff = cell(*(sc * v for v in interval(paired(rows, m, "soft", "normal"), rng)), up, d)
         print(f"| {m} | {mean['normal']:.{d}f} | {mean['soft']:.{d}f} | {diff} |")
     sys.exit()
+import importlib.util
+
+
+def _script(name: str):
+    spec = importlib.util.spec_from_file_location(name.replace("-", "_"), f"app/bench/results/plan2place/{name}.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
 if mode == "soft":
-    import models.placement.greedy as G, models.placement.moves as M, models.placement.polish as P
-    from models.placement.candidates import Shared
-    orig = G.hard_filter
-    def relaxed(scorer, obj, placed, cands, swept, strict=True):
-        return orig(scorer, obj, placed, cands, swept, False)
-    G.hard_filter = M.hard_filter = P.hard_filter = relaxed
-    class SoftShared(Shared):
-        @property
-        def zones_clear(self): return False
-        @zones_clear.setter
-        def zones_clear(self, v): pass
-    G.Shared = SoftShared
+    _script("blocked-fronts-soft").soften()
 from models.datasets import load_dataset
 from models.placement.base import get_solver
 from app.bench.placement import score
-import importlib.util
-spec = importlib.util.spec_from_file_location("bf", "app/bench/results/plan2place/blocked-fronts.py"); bf = importlib.util.module_from_spec(spec); spec.loader.exec_module(bf)
+bf = _script("blocked-fronts")
 recs = load_dataset("dense"); plans = [r.plan for i, r in enumerate(recs) if i % 15 in (3, 7)]
 sol = get_solver("plan2place"); rows = []
 for p in plans:
