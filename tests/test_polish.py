@@ -8,7 +8,10 @@ from models.datasets import load_dataset
 from models.energy.exact import layout_energy
 from models.metrics import scene_metrics
 from models.placement.greedy import Episode, GreedySolver
-from models.placement.polish import broken, crowded, polish
+from models.geometry import SweptBoxes
+from models.placement.greedy import hard_filter
+from models.placement.moves import displacements
+from models.placement.polish import MAKE_WAY_POSES, MAKE_WAY_POSES_CROWDED, broken, crowded, polish
 
 SEEN = {r.plan.id: r.plan for r in load_dataset("seen", "train")[:120]}
 
@@ -77,15 +80,46 @@ def test_the_greedy_solver_polishes_unless_told_not_to_repair():
     assert finished.constraint_satisfaction > plain.constraint_satisfaction
 
 
-def test_in_a_crowded_room_only_objects_with_a_broken_constraint_move():
-    """No make-way move there (each would move objects whose constraints are all met)."""
+def test_in_a_crowded_room_make_way_moves_try_one_pose_and_never_cost_energy_reach_or_constraints(monkeypatch):
+    """There most make-way moves fail and each costs several ms (README, Plan2Place)."""
+    import models.placement.polish as polish_module
+    tries = []
+
+    def spy(*args, **kwargs):
+        tries.append(kwargs["tries"])
+        return displacements(*args, **kwargs)
+
+    monkeypatch.setattr(polish_module, "displacements", spy)
     dense = [r.plan for r in load_dataset("dense")[:12]]
     assert all(crowded(p) for p in dense) and not any(crowded(p) for p in list(SEEN.values())[:40])
-    moves = 0
+    changed = 0
     for plan in dense:
         ep = _finished(plan)
-        was_broken = set(broken(ep))
-        moved = polish(ep)
-        assert set(moved) <= was_broken and len(moved) == len(set(moved))
-        moves += len(moved)
-    assert moves  # the claim is tested on real moves
+        before, energy, out = _judged(plan, ep)
+        if not polish(ep):
+            continue
+        changed += 1
+        after, new_energy, new_out = _judged(plan, ep)
+        assert after.constraint_satisfaction > before.constraint_satisfaction, plan.id
+        assert new_energy <= energy + 1e-9 and new_out <= out and after.collisions == 0, plan.id
+    assert changed and tries and set(tries) == {MAKE_WAY_POSES_CROWDED}
+    tries.clear()
+    polish(_finished(SEEN["seen-00002"]))
+    assert set(tries) == {MAKE_WAY_POSES}
+
+
+def test_an_object_in_a_front_clearance_is_in_the_way_of_a_make_way_move():
+    """The strict hard filter keeps bodies out of front clearances (and a pose's own clearance free): a
+    make-way move that only counted overlapping bodies could never clear such a pose."""
+    found = 0
+    for plan in [r.plan for r in load_dataset("dense")[:6]]:
+        ep = _finished(plan)
+        for p in ep.placed:
+            obj, others = ep.problem.plan.object(p.id), [q for q in ep.placed if q is not p]
+            cands, body = ep.scorer.bodies(obj)
+            plain = dict(displacements(ep, obj, cands, SweptBoxes(body), others, tries=len(cands)))
+            for i, blockers in displacements(ep, obj, cands, SweptBoxes(body), others, tries=len(cands), strips=True):
+                rest = [q for q in others if q.id not in blockers]
+                assert hard_filter(ep.scorer, obj, rest, cands[[i]], SweptBoxes(body[[i]]))[0][0]
+                found += set(blockers) != set(plain.get(i, blockers))
+    assert found  # poses cleared only by moving an object out of a clearance

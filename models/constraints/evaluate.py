@@ -14,7 +14,7 @@ from functools import cached_property
 
 import numpy as np
 
-from models.geometry import boxes
+from models.geometry import boxes, one_box
 
 EDGE_TOL = 0.05
 MIDDLE_MIN = 0.4
@@ -46,6 +46,8 @@ class Poses:
 
     @cached_property
     def _boxes(self) -> np.ndarray:
+        if len(self.x) == 1:
+            return one_box(self.x[0], self.z[0], self.width, self.depth, self.rotation[0])[None]
         return boxes(self.x, self.z, self.width, self.depth, self.rotation)
 
     def fronts(self) -> tuple[np.ndarray, np.ndarray]:

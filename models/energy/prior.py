@@ -88,19 +88,29 @@ def learn(scenes: list[dict], floor_types: set[str]) -> dict:
     return {"gap_bins": list(GAP_BINS), "pairs": dict(sorted(pairs.items())), "walls": dict(sorted(walls.items()))}
 
 
-def _surprise(counts: list[int], index) -> np.ndarray:
-    """-log p(bin) / max possible, Laplace smoothed: 0 for the most typical bin's neighbourhood, 1 for unseen."""
+def _surprise(counts: list[int]) -> np.ndarray:
+    """Per bin: -log p(bin) / max possible, Laplace smoothed: 0 for the most typical bin's neighbourhood, 1 for
+    unseen."""
     c = np.asarray(counts, float) + ALPHA
     p = c / c.sum()
     worst = -math.log(ALPHA / c.sum())
     best = -math.log(p.max())
-    return np.clip((-np.log(p[index]) - best) / max(worst - best, 1e-9), 0.0, 1.0)
+    return np.clip((-np.log(p) - best) / max(worst - best, 1e-9), 0.0, 1.0)
 
 
 class RelationPrior:
     def __init__(self, data: dict):
         self.pairs = data["pairs"]
         self.walls = data["walls"]
+        self._tables: dict[tuple, np.ndarray] = {}  # `_surprise` of a table's entry, made when first asked
+
+    def _surprises(self, table: str, key: str, field: str = "") -> np.ndarray:
+        """`_surprise` of a pair's `field` ("gap", "turn") or of a wall entry ([hits, total]), made once."""
+        if (table, key, field) not in self._tables:
+            entry = getattr(self, table)[key]
+            counts = entry[field] if field else [entry[1] - entry[0], entry[0]]
+            self._tables[table, key, field] = _surprise(counts)
+        return self._tables[table, key, field]
 
     def _key(self, table: dict, room: str, *types: str) -> str | None:
         for r in (room, POOLED):
@@ -114,8 +124,8 @@ class RelationPrior:
         key = self._key(self.pairs, room, a, b)
         if key is None:
             return np.zeros(np.broadcast(np.asarray(gap), np.asarray(rel_yaw)).shape)
-        entry = self.pairs[key]
-        return 0.5 * (_surprise(entry["gap"], gap_bin(gap)) + _surprise(entry["turn"], turn_bin(rel_yaw)))
+        return 0.5 * (self._surprises("pairs", key, "gap")[gap_bin(gap)]
+                      + self._surprises("pairs", key, "turn")[turn_bin(rel_yaw)])
 
     def companion_gap(self, room: str, a: str, b: str) -> float | None:
         """If A keeps a B near by habit (of at least `COMPANION_SEEN` A's in rooms with a B, at least
@@ -137,8 +147,7 @@ class RelationPrior:
         touching = np.asarray(touching, bool)
         if key is None:
             return np.zeros(touching.shape)
-        hits, total = self.walls[key]
-        return _surprise([total - hits, hits], touching.astype(int))
+        return self._surprises("walls", key)[touching.astype(int)]
 
 
 @cache

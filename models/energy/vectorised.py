@@ -21,7 +21,7 @@ from models.constraints.evaluate import Poses, box_gap, placement, relation, wal
 from models.energy import navigation as nav
 from models.energy.prior import WALL_TOUCH, relation_prior
 from models.energy.weights import ACCESS_DEPTH, AFF_BLOCKED, AFF_OUTSIDE, EPS, PRIOR_LAMBDA, ROBOT_RADIUS, WEIGHTS
-from models.geometry import SweptBoxes, boxes, overlap_many
+from models.geometry import SweptBoxes, one_box, overlap_many
 from models.placement.candidates import Shared, front_boxes
 from models.placement.problem import PlacementProblem
 from models.values import PlanObject
@@ -95,11 +95,12 @@ class CandidateEnergy:
         self.prior = relation_prior()
         w, d = self.room.width, self.room.depth
         self.poses = {p.id: Poses.one(p.x, p.z, p.rotation, p.width, p.depth) for p in self.placed}
-        self.bodies = np.array([boxes(p.x, p.z, p.width, p.depth, p.rotation) for p in self.placed]).reshape(-1, 4)
+        self.bodies = np.array([one_box(p.x, p.z, p.width, p.depth, p.rotation) for p in self.placed]).reshape(-1, 4)
         self.clear = {p.id: problem.clearance.get(p.id, 0.0) for p in self.placed}
         self.zones = {p.id: front_boxes(p.x, p.z, p.rotation, p.width, p.depth, self.clear[p.id])
                       for p in self.placed if self.clear[p.id] > 0}
         self.room_box = np.array([0.0, 0.0, w, d])
+        self._pairs: dict[tuple, float] = {}  # `_pair` by relation and poses (shared with `after`'s copies)
         self._constant_terms()
         self.grid = nav.Grid(w, d)
         self.mesh = self.grid.mesh()
@@ -120,7 +121,7 @@ class CandidateEnergy:
         new.placed, new.pending = self.placed + [p], set(pending)
         pose = Poses.one(p.x, p.z, p.rotation, p.width, p.depth)
         new.poses = {**self.poses, p.id: pose}
-        body = boxes(p.x, p.z, p.width, p.depth, p.rotation).reshape(1, 4)
+        body = one_box(p.x, p.z, p.width, p.depth, p.rotation)[None]
         new.bodies = np.concatenate([self.bodies, body])
         clear = self.problem.clearance.get(p.id, 0.0)
         new.clear = {**self.clear, p.id: clear}
@@ -169,12 +170,12 @@ class CandidateEnergy:
         rel_n = 1
         for c in oc.relations:
             if c.target in self.poses:
-                rel_sum += float(self._rel(c.name, oid, c.target, pose, self.poses[c.target])[0])
+                rel_sum += self._pair(c.name, oid, c.target, pose, self.poses[c.target])
                 rel_n += 1
         for q in self.placed:
             for c in cons.objects[q.id].relations:
                 if c.target == oid:
-                    rel_sum += float(self._rel(c.name, q.id, oid, self.poses[q.id], pose)[0])
+                    rel_sum += self._pair(c.name, q.id, oid, self.poses[q.id], pose)
                     rel_n += 1
         collision = float((overlap_many(body, self.bodies)[0] ** 2).sum()) if len(self.bodies) else 0.0
         area = (body[0, 2] - body[0, 0]) * (body[0, 3] - body[0, 1])
@@ -212,7 +213,7 @@ class CandidateEnergy:
             rel_n += 1
             for c in oc.relations:
                 if c.target in self.poses:
-                    rel_sum += float(self._rel(c.name, p.id, c.target, pose, self.poses[c.target])[0])
+                    rel_sum += self._pair(c.name, p.id, c.target, pose, self.poses[c.target])
                     rel_n += 1
         self.rel_sum, self.rel_n = rel_sum, rel_n
         ov = overlap_many(self.bodies, self.bodies) if len(self.bodies) else np.zeros((0, 0))
@@ -237,6 +238,13 @@ class CandidateEnergy:
             e, _ = relation(name, a, b, gap=g)
         pe = self.prior.pair_energy(self.room.type, self.types[a_id], self.types[b_id], g, a.rotation - b.rotation)
         return e * (1 + PRIOR_LAMBDA * pe)
+
+    def _pair(self, name, a_id, b_id, a: Poses, b: Poses) -> float:
+        """`_rel` of two single poses, memoised: adding and taking away objects judges the same pairs again."""
+        key = (name, a_id, b_id, a.x[0], a.z[0], a.rotation[0], b.x[0], b.z[0], b.rotation[0])
+        if (value := self._pairs.get(key)) is None:
+            value = self._pairs[key] = float(self._rel(name, a_id, b_id, a, b)[0])
+        return value
 
     def _outside(self, zones: np.ndarray) -> np.ndarray:
         area = (zones[:, 2] - zones[:, 0]) * (zones[:, 3] - zones[:, 1])

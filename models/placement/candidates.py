@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from models.constraints.evaluate import Poses, box_gap, placement, relation, wall_clearance
-from models.geometry import boxes, half_extents, overlap_many
+from models.geometry import boxes, half_extents, one_box, overlap_many
 from models.placement.problem import DOOR_CLEARANCE, PlacementProblem
 from models.values import PlanObject
 
@@ -148,7 +148,7 @@ class CandidateScorer:
 
     def place(self, obj: PlanObject, x: float, z: float, rotation: float) -> PlacedObject:
         clearance = self.problem.clearance.get(obj.id, 0.0)
-        body = boxes(x, z, obj.size.x, obj.size.z, rotation)
+        body = one_box(x, z, obj.size.x, obj.size.z, rotation)
         front = front_boxes(x, z, rotation, obj.size.x, obj.size.z, clearance) if clearance > 0 else None
         return PlacedObject(obj.id, x, z, rotation, obj.size.x, obj.size.z, body, front)
 

@@ -18,7 +18,7 @@ import numpy as np
 
 from models.constraints.evaluate import gap_of_boxes
 from models.energy.prior import relation_prior
-from models.geometry import SweptBoxes, boxes
+from models.geometry import SweptBoxes, boxes, one_box
 from models.placement.base import StepObserver
 from models.placement.candidates import PlacedObject
 from models.placement.greedy import Episode
@@ -42,7 +42,7 @@ def companions(plan: ConstraintPlan) -> Companions:
 
 
 def _footprint(p: PlacedObject) -> np.ndarray:
-    return boxes(p.x, p.z, p.width, p.depth, p.rotation)
+    return one_box(p.x, p.z, p.width, p.depth, p.rotation)
 
 
 class Habits:

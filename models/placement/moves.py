@@ -12,7 +12,7 @@ from models.energy.vectorised import CandidateEnergy
 from models.energy.weights import WEIGHTS
 from models.geometry import SweptBoxes
 from models.placement.base import PlacementStep
-from models.placement.candidates import OVERLAP_TOL, PlacedObject
+from models.placement.candidates import OVERLAP_TOL, PlacedObject, front_boxes
 from models.placement.greedy import Episode, hard_filter
 
 MAX_BLOCKERS, TRIES = 3, 5  # displacements
@@ -49,18 +49,21 @@ def move_step(obj_id: str, pose: PlacedObject, cands: np.ndarray, legal: np.ndar
 
 def displacements(ep: Episode, obj, cands: np.ndarray, swept: SweptBoxes, placed: list[PlacedObject],
                   rank: np.ndarray | None = None, energy: Callable[[], CandidateEnergy] | None = None,
-                  tries: int = TRIES) -> list[tuple[int, list[str]]]:
+                  tries: int = TRIES, strips: bool = False) -> list[tuple[int, list[str]]]:
     """Poses of `cands` that `obj` could take if at most `MAX_BLOCKERS` of `placed` (none fixed) were moved
     away: (pose index, the ids in the way, largest first), highest `rank` first (default: all equal), then
     fewest in the way, then lowest energy (the overlap with them not counted; `energy`: makes the set-up for
-    `placed`, if there is a cheaper way), at most `tries`."""
+    `placed`, if there is a cheaper way), at most `tries`. With `strips`, an object is also in the way where
+    the pose and it stand in each other's front clearance (the strict hard filter's rule), and the pose's own
+    clearance must lie inside the room."""
     way = np.zeros((len(cands), len(placed)), bool)  # pose i overlaps placed object j
-    for j, p in enumerate(placed):
-        for idx, area in swept.overlaps(p.body[None]):
-            way[idx[area > OVERLAP_TOL], j] = True
+    for j, (idx, area) in enumerate(swept.overlaps(np.array([p.body for p in placed]).reshape(-1, 4))):
+        way[idx[area > OVERLAP_TOL], j] = True
+    if strips:
+        _mark_strips(ep, obj, cands, swept, placed, way)
     fixed = np.array([p.id in ep.problem.fixed for p in placed], bool)
     count = way.sum(axis=1)
-    free = hard_filter(ep.scorer, obj, [], cands, swept, False)[0]  # inside, doorways clear
+    free = hard_filter(ep.scorer, obj, [], cands, swept, strips)[0]  # inside, doorways clear
     options = np.flatnonzero(free & (count > 0) & (count <= MAX_BLOCKERS) & ~way[:, fixed].any(axis=1))
     if not len(options):
         return []
@@ -78,3 +81,19 @@ def displacements(ep: Episode, obj, cands: np.ndarray, swept: SweptBoxes, placed
     area = {p.id: p.width * p.depth for p in placed}
     return [(int(options[k]), sorted((placed[j].id for j in np.flatnonzero(way[options[k]])), key=lambda i: -area[i]))
             for k in order]
+
+
+def _mark_strips(ep: Episode, obj, cands: np.ndarray, swept: SweptBoxes, placed: list[PlacedObject],
+                 way: np.ndarray) -> None:
+    """Mark in `way` (poses x placed) the placed objects standing in a pose's front clearance, or whose own
+    front clearance the pose stands in; pairs tied by a front relation (a chair at its desk) excepted."""
+    tied, depth = ep.problem.constraints.tied, ep.problem.clearance.get(obj.id, 0.0)
+    free = [j for j, p in enumerate(placed) if not tied(obj.id, p.id)]
+    theirs = [j for j in free if placed[j].front is not None]
+    pairs = [(swept, theirs, [placed[j].front for j in theirs])]  # the pose in their clearance
+    if depth > 0:  # they in the pose's
+        front = front_boxes(cands[:, 0], cands[:, 1], cands[:, 2], obj.size.x, obj.size.z, depth)
+        pairs.append((SweptBoxes(front), free, [placed[j].body for j in free]))
+    for boxes_, js, others in pairs:
+        for j, (idx, area) in zip(js, boxes_.overlaps(np.array(others).reshape(-1, 4))):
+            way[idx[area > OVERLAP_TOL], j] = True

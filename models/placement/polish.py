@@ -6,20 +6,21 @@ elsewhere: the layout's energy does not rise and no more task objects are out of
 
 - A free move: the legal pose that meets the most of its constraints, then of lowest energy (of the
   `CHECKS` best, the first that keeps reach).
-- Else a make-way move: a pose that meets more, where at most `moves.MAX_BLOCKERS` objects stand in the way
-  (`MAKE_WAY_POSES` such poses, models.placement.moves.displacements); those are placed again, each where it
-  meets the most constraints, then at its lowest energy. A cheap screen (the same placing by constraints alone) drops
-  the poses that cannot meet more before any energy is computed.
+- Else a make-way move: a pose that meets more, where at most `moves.MAX_BLOCKERS` objects stand in the way,
+  by their bodies or by a front clearance (the pose's or theirs; `MAKE_WAY_POSES` such poses, one in a `crowded`
+  room, models.placement.moves.displacements); those are placed again, each where it meets the most
+  constraints, then at its lowest energy. A cheap screen (the same placing by constraints alone) drops the poses
+  that cannot meet more before any energy is computed.
 
-Fixed objects never move; each move is a placement step; the time counts in PTO. A `crowded` room gets free
-moves only: there make-way moves cost several ms per object and meet little more (README, Plan2Place).
+Fixed objects never move; each move is a placement step; the time counts in PTO. In a `crowded` room most
+make-way moves fail and each costs several ms, hence one pose per move there (README, Plan2Place).
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
-from functools import cached_property
+from functools import cached_property, lru_cache
 
 import numpy as np
 
@@ -33,7 +34,7 @@ from models.placement.moves import displacements, legal_poses, move_step
 from models.values import ConstraintPlan
 
 CHECKS = 20
-MAKE_WAY_POSES = 3  # poses tried per make-way move
+MAKE_WAY_POSES, MAKE_WAY_POSES_CROWDED = 3, 1  # poses tried per make-way move (in a `crowded` room)
 CROWDED = 0.5  # share of the floor the plan's objects cover above which no make-way move is tried
 TOL = 1e-9  # energy: "does not rise"
 MORE_MET = "meeting more of its constraints"  # a moved object's step reason
@@ -110,13 +111,29 @@ def met_among(ep: Episode, placed: list[PlacedObject], ids: set[str]) -> int:
         mine = p.id in ids
         if oc is None:
             continue
-        pose = _pose(p)
         if mine:
-            n += int(placement(oc.placement, pose, room.width, room.depth)[1][0])
+            n += _placement_met(oc.placement, _shape(p), room.width, room.depth)
         for c in oc.relations:
             if c.target in by_id and (mine or c.target in ids):
-                n += int(relation(c.name, pose, _pose(by_id[c.target]))[1][0])
+                n += _relation_met(c.name, _shape(p), _shape(by_id[c.target]))
     return n
+
+
+def _shape(p: PlacedObject) -> tuple[float, float, float, float, float]:
+    return p.x, p.z, p.rotation, p.width, p.depth
+
+
+@lru_cache(maxsize=1 << 16)
+def _placement_met(name: str, shape: tuple, width: float, depth: float) -> bool:
+    """Is the global placement `name` met by one pose (x, z, rotation, width, depth)? Memoised: the make-way
+    moves judge the same poses again and again."""
+    return bool(placement(name, Poses.one(*shape), width, depth)[1][0])
+
+
+@lru_cache(maxsize=1 << 16)
+def _relation_met(name: str, a: tuple, b: tuple) -> bool:
+    """Is `A name B` met by the poses a and b (x, z, rotation, width, depth)? Memoised as `_placement_met`."""
+    return bool(relation(name, Poses.one(*a), Poses.one(*b))[1][0])
 
 
 def _legal_among(ep: Episode, oid: str, placed: list[PlacedObject], memo: dict) -> tuple[np.ndarray, np.ndarray]:
@@ -143,6 +160,8 @@ def _place_again(ep: Episode, movers: list[str], energy: CandidateEnergy, placed
             return None
         terms = energy.score(obj, cands[legal])
         best = int(np.lexsort((terms["total"], -met(ep, oid, cands[legal], placed)))[0])
+        if k == len(movers) - 1:  # the move is judged by this step's terms
+            terms = exactly(energy, obj, cands, legal, terms, best)
         placed.append(ep.scorer.place(obj, *(float(v) for v in cands[legal[best]])))
         steps.append(move_step(oid, placed[-1], cands, legal, best, terms, why))
         energy = energy.after(placed[-1], pending=movers[k + 2:])
@@ -218,15 +237,25 @@ def free_move(ep: Episode, now: Standing, obj, others: list[PlacedObject], cands
         if not accept(pose):
             continue
         base = now.reach.blocked(others) if base is None else base  # the grid without `obj`, made once
-        if (out := now.reach.out_with(others, base, pose)) <= now.out:
-            return Move([*others, pose], [move_step(obj.id, pose, cands, legal, int(k), terms, why(pose))],
-                        float(terms["total"][k]), out, lambda: setup.after(pose))
+        if (out := now.reach.out_with(others, base, pose)) > now.out:
+            continue
+        judged = exactly(setup, obj, cands, legal, terms, int(k))
+        if judged["total"][k] <= now.energy + TOL:
+            return Move([*others, pose], [move_step(obj.id, pose, cands, legal, int(k), judged, why(pose))],
+                        float(judged["total"][k]), out, lambda: setup.after(pose))
     return None
 
 
-def _relocation(ep: Episode, now: Standing, oid: str, make_way: bool = True) -> Move | None:
+def exactly(setup: CandidateEnergy, obj, cands: np.ndarray, legal: np.ndarray, terms: dict, k: int) -> dict:
+    """`terms` (of the `legal` poses) with pose `k`'s scored again with the free space labelled exactly: what a
+    move is judged by. The fast navigation term, fine for ranking poses, misses a way that the pose closes."""
+    exact = setup.score(obj, cands[legal[[k]]], nav_mode="exact")
+    return {t: np.where(np.arange(len(v)) == k, exact[t][0], v) for t, v in terms.items()}
+
+
+def _relocation(ep: Episode, now: Standing, oid: str, poses: int = MAKE_WAY_POSES) -> Move | None:
     """A move meeting more constraints than `now` with no more energy and no more task objects out of reach,
-    by a free or (with `make_way`) a make-way move of `oid` (see the module); None if none is found."""
+    by a free or a make-way move of `oid` (trying `poses` poses; see the module); None if none is found."""
     current = next(p for p in ep.placed if p.id == oid)
     others = [p for p in ep.placed if p is not current]
     obj = ep.problem.plan.object(oid)
@@ -248,9 +277,7 @@ def _relocation(ep: Episode, now: Standing, oid: str, make_way: bool = True) -> 
 
     if len(legal) and (move := free_move(ep, now, obj, others, cands, legal, gain, setup(), lambda _: MORE_MET)):
         return move
-    if not make_way:
-        return None
-    for i, blockers in displacements(ep, obj, cands, swept, others, rank=gain, energy=setup, tries=MAKE_WAY_POSES):
+    for i, blockers in displacements(ep, obj, cands, swept, others, rank=gain, energy=setup, tries=poses, strips=True):
         placed = [p for p in others if p.id not in blockers]
         if not hard_filter(ep.scorer, obj, placed, cands[[i]], SweptBoxes(body[[i]]))[0][0]:
             continue
@@ -281,11 +308,11 @@ def _relocation(ep: Episode, now: Standing, oid: str, make_way: bool = True) -> 
 
 def polish(ep: Episode, observer: StepObserver | None = None) -> list[str]:
     """Move objects of the finished episode `ep` whose constraints are broken, each once, most broken first,
-    when a move meets more of them at no cost (no make-way move in a `crowded` room); the ids moved, in order."""
+    when a move meets more of them at no cost (see the module); the ids moved, in order."""
     moved: list[str] = []
-    now, make_way = Standing(ep), not crowded(ep.problem.plan)
+    now, poses = Standing(ep), MAKE_WAY_POSES_CROWDED if crowded(ep.problem.plan) else MAKE_WAY_POSES
     for oid in broken(ep):
-        move = _relocation(ep, now, oid, make_way)
+        move = _relocation(ep, now, oid, poses)
         if move is None:
             continue
         now.moved(move)
