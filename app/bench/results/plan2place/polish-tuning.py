@@ -1,7 +1,9 @@
 # python app/bench/results/plan2place/polish-tuning.py > app/bench/results/plan2place/polish-tuning.md
 """Polish variants on plans no benchmark table uses: 40 varied-room validation plans, 20 unseen_a and 20 dense
 plans off the benchmark's sample (records 5::25 and 7::15); greedy's layout after make-room and restore-access,
-then the variant. CPU ms per object of the polish alone."""
+then the variant. CPU ms per object of the polish alone. Written for the polish of its time (free moves only in
+crowded rooms): since crowded rooms get one-pose make-way moves (make-way-strips/), its "free moves only" and
+"crowded rooms too" variants no longer mean what they say, and polish-tuning.md stays as that code measured it."""
 import sys, time, numpy as np, statistics
 from models.datasets.varied import varied_plan
 from models.datasets import load_dataset
