@@ -105,16 +105,17 @@ def boxes(x, z, width, depth, rotation) -> np.ndarray:
 
 
 @lru_cache(maxsize=None)
-def _turned(rotation: float) -> tuple[float, float]:
-    """|cos| and |sin| of one rotation in degrees, computed as `half_extents` computes them."""
+def turn(rotation: float) -> tuple[float, float]:
+    """sin and cos of one rotation in degrees, computed as numpy computes them for arrays (so the one-pose
+    shortcuts below equal the array functions to the bit)."""
     r = np.radians(np.array([rotation]))
-    return float(np.abs(np.cos(r))[0]), float(np.abs(np.sin(r))[0])
+    return float(np.sin(r)[0]), float(np.cos(r)[0])
 
 
 def one_box(x: float, z: float, width: float, depth: float, rotation: float) -> np.ndarray:
     """`boxes` of one rectangle, shape (4,), with the same values but without numpy's cost per call on
     one-element arrays (about 20 us; the repairs make tens of thousands of single boxes)."""
-    c, s = _turned(float(rotation))
+    s, c = (abs(v) for v in turn(float(rotation)))
     ex, ez = (width * c + depth * s) / 2, (width * s + depth * c) / 2
     return np.array([x - ex, z - ez, x + ex, z + ez], float)
 

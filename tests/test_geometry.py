@@ -74,3 +74,16 @@ def test_swept_overlaps_equal_the_dense_ones(many, few):
     for m, (idx, area) in enumerate(SweptBoxes(a).overlaps(b)):
         swept[idx, m] = area
     assert np.allclose(dense, swept, atol=1e-12)
+
+
+@given(coords, coords, sizes, sizes, sizes, st.sampled_from([0.0, 90.0, 180.0, 270.0, 30.0, 45.0, 359.5]))
+def test_one_pose_shortcuts_equal_the_array_functions_to_the_bit(x, z, w, d, clearance, r):
+    """`one_box` and `front_boxes` of one pose skip numpy's per-call cost; layouts must not change for it."""
+    from models.geometry import one_box
+    from models.placement.candidates import front_boxes
+    assert np.array_equal(one_box(x, z, w, d, r), boxes(x, z, w, d, r))
+    assert np.array_equal(one_box(x, z, w, d, r), boxes(np.array([x]), np.array([z]), w, d, np.array([r]))[0])
+    rad = np.radians(np.array([r]))
+    off = d / 2 + clearance / 2
+    strip = boxes(x + np.sin(rad) * off, z + np.cos(rad) * off, w, clearance, np.array([r]))[0]
+    assert np.array_equal(front_boxes(x, z, r, w, d, clearance), strip)

@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from models.constraints.evaluate import Poses, box_gap, placement, relation, wall_clearance
-from models.geometry import boxes, half_extents, one_box, overlap_many
+from models.geometry import boxes, half_extents, one_box, overlap_many, turn
 from models.placement.problem import DOOR_CLEARANCE, PlacementProblem
 from models.values import PlanObject
 
@@ -80,8 +80,12 @@ def grid_boxes(cands: np.ndarray, width: float, depth: float, blocks=None) -> np
 
 
 def front_boxes(x, z, rotation, width, depth, clearance: float) -> np.ndarray:
-    r = np.radians(rotation)
+    """The box of the `clearance`-deep strip in front of each pose ((4,) for one pose given as numbers)."""
     off = depth / 2 + clearance / 2
+    if np.ndim(x) == 0 and np.ndim(rotation) == 0:  # one pose: the same values without numpy's per-call cost
+        s, c = turn(float(rotation))
+        return one_box(x + s * off, z + c * off, width, clearance, rotation)
+    r = np.radians(rotation)
     return boxes(x + np.sin(r) * off, z + np.cos(r) * off, width, clearance, rotation)
 
 
