@@ -35,7 +35,7 @@ from models.values import ConstraintPlan
 
 CHECKS = 20
 MAKE_WAY_POSES, MAKE_WAY_POSES_CROWDED = 3, 1  # poses tried per make-way move (in a `crowded` room)
-CROWDED = 0.5  # share of the floor the plan's objects cover above which no make-way move is tried
+CROWDED = 0.5  # share of the floor the plan's objects cover above which a room is `crowded`
 TOL = 1e-9  # energy: "does not rise"
 MORE_MET = "meeting more of its constraints"  # a moved object's step reason
 
