@@ -397,8 +397,7 @@ class CandidateEnergy:
                   for p in targets]
         out = np.empty(len(cands))
         for i, (x, z, rot) in enumerate(cands):
-            blocked = self.blocked | nav.blocked_by_boxes(self.grid, body[i:i + 1])
-            reach = nav.reachable_space(self.grid, blocked, self.room)
+            reach = self._reachable(self._blocked_with(body[i]))
             reached = sum(bool((reach & s).any()) for s in strips)
             if is_target:
                 own = front_boxes(x, z, rot, obj.size.x, obj.size.z, ACCESS_DEPTH)
