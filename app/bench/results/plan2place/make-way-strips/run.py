@@ -1,7 +1,8 @@
 """Plan2Place and greedy on 24 plans per set off the bench samples (see decision.md), 2 seeds, in the tree on
 PYTHONPATH; writes rows (metrics, plan, seed, solver) to the JSON file given. `python run.py pair OLD NEW` prints
 the paired table (new - old). From a tree's root: PYTHONPATH=. python .../run.py /tmp/new.json [QUARTER]
-(the plans at `i % step == QUARTER * step // 4`; 1 unless given: variants 1 and 2 used 1, variant 3 used 3)"""
+(the plans at `i % step == QUARTER * step // 4`; 1 unless given: variants 1 and 2 used 1, variant 3 used 3;
+a fraction N/D picks `i % step == N * step // D`: the exact baseline's decision used 3/8)"""
 import json
 import sys
 import time
@@ -13,16 +14,17 @@ METRICS = (("constraint_satisfaction", 100, True, 2), ("key_nav", 100, True, 2),
            ("realism", 100, True, 2), ("energy", 1, False, 3), ("pto_s", 1000, False, 2))
 
 
-def plans(ds, quarter=1):
+def plans(ds, quarter="1"):
     from app.bench.placement import pick_records
     from models.datasets import load_dataset
     recs = load_dataset(ds, "validation" if ds == "seen" else None)
     bench = {r.plan.id for n in ((20, 40) if ds == "seen" else (20,)) for r in pick_records(ds, n)}
     step = max(len(recs) // 20, 1)
-    return [r.plan for i, r in enumerate(recs) if i % step == quarter * step // 4 and r.plan.id not in bench][:24]
+    num, den = (int(v) for v in f"{quarter}/4".split("/")[:2])
+    return [r.plan for i, r in enumerate(recs) if i % step == num * step // den and r.plan.id not in bench][:24]
 
 
-def run(out, quarter=1):
+def run(out, quarter="1"):
     from app.bench.placement import score
     from models.placement.base import get_solver
     rows = []
@@ -55,4 +57,4 @@ def pair(old, new):
 
 
 if __name__ == "__main__":
-    pair(*sys.argv[2:4]) if sys.argv[1] == "pair" else run(sys.argv[1], *map(int, sys.argv[2:3]))
+    pair(*sys.argv[2:4]) if sys.argv[1] == "pair" else run(sys.argv[1], *sys.argv[2:3])
