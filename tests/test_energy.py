@@ -149,3 +149,17 @@ def test_vectorised_charges_missing_and_pending_like_exact():
         vec = CandidateEnergy(problem, [_P(pl[0])], pending=pending).score(obj, cand, nav_mode="exact")
         for term in exact:
             assert vec[term][0] == pytest.approx(exact[term], abs=1e-6), (pending, term)
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_the_terms_of_a_set_up_alone_are_the_exact_energy_of_its_objects(pipeline, seed):
+    """`CandidateEnergy.terms()`, the layout without a candidate (the polish's baseline), labels the free space
+    exactly: equal to `layout_energy` of the placed objects, whether the others are pending or left out."""
+    plan, problem, placed, obj = random_case(pipeline, seed)
+    rest = {o.id for o in plan.objects} - {p.id for p in placed}
+    for pending in (set(), rest, {obj.id}):
+        exact = layout_energy(plan, placed, problem, pending=pending).as_dict()
+        terms = CandidateEnergy(problem, [_P(p) for p in placed], pending=pending).terms()
+        assert (exact["missing"] > 0) == (not pending)  # `obj` is charged as left out unless pending
+        for term in exact:
+            assert terms[term] == pytest.approx(exact[term], abs=1e-9), (pending, term)

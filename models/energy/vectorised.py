@@ -250,6 +250,21 @@ class CandidateEnergy:
         area = (zones[:, 2] - zones[:, 0]) * (zones[:, 3] - zones[:, 1])
         return (area - overlap_many(zones, self.room_box[None])[:, 0]) > OVERLAP_TOL
 
+    def terms(self) -> dict[str, float]:
+        """Energy terms and weighted total of the placed objects alone (no candidate), the free space labelled
+        exactly (the set-up's own grid): what `exact.layout_energy` gives for them, with `pending` not charged."""
+        done = {p.id for p in self.placed} | self.pending
+        missing = [o.id for o in self.problem.plan.objects if o.id not in done]
+        targets = [p for p in self.placed if p.id in self.task]
+        n_targets = len(targets) + sum(oid in self.task for oid in missing)
+        reached = sum(bool((self.reach & nav.in_box_mask(
+            self.grid, front_boxes(p.x, p.z, p.rotation, p.width, p.depth, ACCESS_DEPTH))).any()) for p in targets)
+        terms = {"rel": math.log1p(self.rel_sum / max(self.rel_n, 1)), "collision": math.log1p(self.collision_sum),
+                 "oob": math.log1p(self.oob_sum), "nav": (1 - reached / n_targets) ** 2 if n_targets else 0.0,
+                 "aff": self.aff_sum / max(len(self.zones), 1), "missing": len(missing) / max(self.n_objects, 1)}
+        terms["total"] = sum(WEIGHTS[k] * terms[k] for k in WEIGHTS)
+        return terms
+
     # ---- per candidate -----------------------------------------------------------------------------
 
     def score(self, obj: PlanObject, cands: np.ndarray, nav_mode: str = "fast", shared: Shared | None = None

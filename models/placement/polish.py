@@ -194,12 +194,18 @@ class Move:
 
 
 class Standing:
-    """What a move of the layout `ep.placed` may not worsen: its energy (the episode's, as its last step or
-    repair reported it) and how many task objects are out of the robot's reach (computed when first asked)."""
+    """What a move of the layout `ep.placed` may not worsen: its energy and how many task objects are out of the
+    robot's reach (each computed when first asked)."""
 
     def __init__(self, ep: Episode):
-        self.ep, self.reach, self.energy = ep, ep.reach, ep.energy
+        self.ep, self.reach = ep, ep.reach
         self._next_setup: Callable[[], CandidateEnergy] | None = None
+
+    @cached_property
+    def energy(self) -> float:
+        """The layout's energy with the free space labelled exactly. Not the episode's: its last step and the
+        first repairs report the fast navigation term, which misses a way cut off elsewhere (README, Plan2Place)."""
+        return self.setup.terms()["total"]
 
     @cached_property
     def out(self) -> int:

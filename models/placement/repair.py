@@ -28,7 +28,7 @@ from models.placement.base import StepObserver
 from models.placement.greedy import NO_ROOM, Episode
 from models.placement.habits import keep_companions
 from models.placement.moves import displacements, legal_poses, move_step, scored
-from models.placement.polish import Move, Standing, polish
+from models.placement.polish import Move, Standing, exactly, polish
 
 ROUNDS, NEAR, CHECKS = 3, 4, 40  # restore_access
 
@@ -50,8 +50,9 @@ def _best_move(ep: Episode, now: Standing, oid: str) -> Move | None:
         pose = ep.scorer.place(obj, *(float(v) for v in cands[legal[k]]))
         left = now.reach.out_with(others, base, pose)
         if left < now.out and (best is None or left < best.out):
-            step = move_step(oid, pose, cands, legal, int(k), terms, "clearing the robot's way to the task objects")
-            best = Move([pose if p.id == oid else p for p in ep.placed], [step], float(terms["total"][k]), left,
+            judged = exactly(setup, obj, cands, legal, terms, int(k))
+            step = move_step(oid, pose, cands, legal, int(k), judged, "clearing the robot's way to the task objects")
+            best = Move([pose if p.id == oid else p for p in ep.placed], [step], float(judged["total"][k]), left,
                         lambda pose=pose: setup.after(pose))
             if left == 0:
                 break
@@ -90,7 +91,7 @@ def make_room(ep: Episode, observer: StepObserver | None = None) -> list[str]:
             else:
                 # the left-out object's step shows the energy of the repaired layout
                 terms = CandidateEnergy(ep.problem, [p for p in placed if p is not pose], pending=()).score(
-                    obj, cands[[i]])
+                    obj, cands[[i]], nav_mode="exact")
                 steps[0] = move_step(obj.id, pose, cands, np.array([i]), 0, terms,
                                      f"left out at first: room made by moving {', '.join(blockers)}")
                 ep.placed = placed
