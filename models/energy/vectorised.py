@@ -21,7 +21,7 @@ from models.constraints.evaluate import Poses, box_gap, placement, relation, wal
 from models.energy import navigation as nav
 from models.energy.prior import WALL_TOUCH, relation_prior
 from models.energy.weights import ACCESS_DEPTH, AFF_BLOCKED, AFF_OUTSIDE, EPS, PRIOR_LAMBDA, ROBOT_RADIUS, WEIGHTS
-from models.geometry import SweptBoxes, one_box, overlap_many
+from models.geometry import SweptBoxes, boxes, one_box, overlap_many
 from models.placement.candidates import Shared, front_boxes
 from models.placement.problem import PlacementProblem
 from models.values import PlanObject
@@ -182,14 +182,12 @@ class CandidateEnergy:
         inside = overlap_many(body, self.room_box[None])[0, 0]
         oob = float((1 - inside / (area + EPS)) ** 2)
         aff = 0.0
-        if zone is not None:
+        if zone is not None:  # objects standing in its clearance, its clearance outside the room
+            untied = [j for j, q in enumerate(self.placed) if not cons.tied(oid, q.id)]
             aff += AFF_OUTSIDE * self._outside(zone[None])[0]
-            for j, q in enumerate(self.placed):
-                if not cons.tied(oid, q.id):
-                    aff += AFF_BLOCKED * (overlap_many(zone[None], self.bodies[j:j + 1])[0, 0] > OVERLAP_TOL)
-        for other, z in self.zones.items():
-            if not cons.tied(other, oid):
-                aff += AFF_BLOCKED * (overlap_many(z[None], body)[0, 0] > OVERLAP_TOL)
+            aff += AFF_BLOCKED * int((overlap_many(zone[None], self.bodies[untied])[0] > OVERLAP_TOL).sum())
+        theirs = [z for other, z in self.zones.items() if not cons.tied(other, oid)]  # clearances it stands in
+        aff += AFF_BLOCKED * int((overlap_many(np.array(theirs).reshape(-1, 4), body)[:, 0] > OVERLAP_TOL).sum())
         return rel_sum, rel_n, collision, oob, aff
 
     def _blocked_with(self, b: np.ndarray) -> np.ndarray:
@@ -402,6 +400,10 @@ class CandidateEnergy:
             reached += self._reachable_strip(strip, cut)
         rho = np.where(door_open, reached / n_targets, 0.0)
         return (1 - rho) ** 2
+
+    def exact_navigation(self, obj: PlanObject, cands: np.ndarray) -> np.ndarray:
+        """The navigation term of `score(..., nav_mode="exact")` alone, for candidates (N, 3)."""
+        return self._navigation_exact(obj, cands, boxes(cands[:, 0], cands[:, 1], obj.size.x, obj.size.z, cands[:, 2]))
 
     def _navigation_exact(self, obj: PlanObject, cands: np.ndarray, body: np.ndarray) -> np.ndarray:
         """Label the free space with each candidate in place: what the exact energy computes, per candidate."""

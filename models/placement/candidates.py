@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from models.constraints.evaluate import Poses, box_gap, placement, relation, wall_clearance
-from models.geometry import boxes, half_extents, one_box, overlap_many, turn
+from models.geometry import SweptBoxes, boxes, half_extents, one_box, overlap_many, turn
 from models.placement.problem import DOOR_CLEARANCE, PlacementProblem
 from models.values import PlanObject
 
@@ -98,6 +98,7 @@ class CandidateScorer:
         self.door_zones = np.array([self._door_zone(d.wall, d.center, d.width) for d in room.doors]).reshape(-1, 4)
         self._grids: dict[tuple[float, float], np.ndarray] = {}
         self._bodies: dict[tuple[float, float], tuple[np.ndarray, np.ndarray]] = {}
+        self._swept: dict[tuple[float, float], SweptBoxes] = {}
 
     def _door_zone(self, wall: str, center: float, width: float) -> list[float]:
         half, c = width / 2 + 0.05, DOOR_CLEARANCE
@@ -149,6 +150,14 @@ class CandidateScorer:
             body.setflags(write=False)
             self._bodies[key] = cands, body
         return self._bodies[key]
+
+    def swept(self, obj: PlanObject) -> SweptBoxes:
+        """The sweep structure of `bodies`' boxes, made once per object size (every step and repair that looks
+        at all the poses of an object shares it)."""
+        key = (obj.size.x, obj.size.z)
+        if key not in self._swept:
+            self._swept[key] = SweptBoxes(self.bodies(obj)[1])
+        return self._swept[key]
 
     def place(self, obj: PlanObject, x: float, z: float, rotation: float) -> PlacedObject:
         clearance = self.problem.clearance.get(obj.id, 0.0)

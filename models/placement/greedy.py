@@ -115,7 +115,7 @@ class Episode:
             return Options(obj, cands, feasible, terms, soft)
         # the candidates' boxes and their sweep structure serve the hard filter, the soft score and the energy
         cands, body = self.scorer.bodies(obj)
-        swept = SweptBoxes(body)
+        swept = self.scorer.swept(obj)
         strict = True
         ok, squared = hard_filter(self.scorer, obj, self.placed, cands, swept, True)
         if not ok.any():  # relax the front-clearance rules before giving up

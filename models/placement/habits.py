@@ -18,7 +18,7 @@ import numpy as np
 
 from models.constraints.evaluate import gap_of_boxes
 from models.energy.prior import relation_prior
-from models.geometry import SweptBoxes, boxes, one_box
+from models.geometry import SweptBoxes, one_box
 from models.placement.base import StepObserver
 from models.placement.candidates import PlacedObject
 from models.placement.greedy import Episode
@@ -89,7 +89,7 @@ def _move(ep: Episode, now: Standing, habits: Habits, p: PlacedObject, before: i
     others = [q for q in ep.placed if q is not p]
     obj = ep.problem.plan.object(p.id)
     cands, body = ep.scorer.bodies(obj)
-    gain = habits.near(p.id, boxes(cands[:, 0], cands[:, 1], obj.size.x, obj.size.z, cands[:, 2]))
+    gain = habits.near(p.id, body)
     better = np.flatnonzero(gain > current)
     if not len(better):
         return None

@@ -31,8 +31,8 @@ def legal_poses(ep: Episode, obj, placed: list[PlacedObject], cands: np.ndarray,
 def scored(ep: Episode, obj, placed: list[PlacedObject], pending=(), relax: bool = True):
     """(every candidate pose of `obj`, the indices of the legal ones, their energy terms with `placed` where
     they are and `pending` still to come); no terms when none is legal."""
-    cands, body = ep.scorer.bodies(obj)
-    legal = legal_poses(ep, obj, placed, cands, SweptBoxes(body), relax)
+    cands = ep.scorer.bodies(obj)[0]
+    legal = legal_poses(ep, obj, placed, cands, ep.scorer.swept(obj), relax)
     if not len(legal):
         return cands, legal, {}
     return cands, legal, CandidateEnergy(ep.problem, placed, pending=pending).score(obj, cands[legal])

@@ -26,6 +26,7 @@ import numpy as np
 
 from models.constraints.evaluate import Poses, placement, relation, wall_clearance
 from models.energy.vectorised import CandidateEnergy
+from models.energy.weights import WEIGHTS
 from models.geometry import SweptBoxes
 from models.placement.base import PlacementStep, StepObserver
 from models.placement.candidates import PlacedObject
@@ -142,8 +143,8 @@ def _legal_among(ep: Episode, oid: str, placed: list[PlacedObject], memo: dict) 
     key = (oid, tuple(_key(p) for p in placed))
     if key not in memo:
         obj = ep.problem.plan.object(oid)
-        cands, body = ep.scorer.bodies(obj)
-        memo[key] = cands, legal_poses(ep, obj, placed, cands, SweptBoxes(body))
+        cands = ep.scorer.bodies(obj)[0]
+        memo[key] = cands, legal_poses(ep, obj, placed, cands, ep.scorer.swept(obj))
     return memo[key]
 
 
@@ -235,15 +236,14 @@ def free_move(ep: Episode, now: Standing, obj, others: list[PlacedObject], cands
     """Move `obj` alone (`others` where they are; `setup`: their energy set-up) to the first of its `legal`
     poses, most `gain` then lowest energy first (of the `CHECKS` best), that raises no energy, passes `accept`
     and leaves no more task objects out of reach; its step says `why(pose)`. None if none does."""
-    terms, base = setup.score(obj, cands[legal]), None
+    terms = setup.score(obj, cands[legal])
     for k in np.lexsort((terms["total"], -gain[legal]))[:CHECKS]:
         if terms["total"][k] > now.energy + TOL:
             continue
         pose = ep.scorer.place(obj, *(float(v) for v in cands[legal[k]]))
         if not accept(pose):
             continue
-        base = now.reach.blocked(others) if base is None else base  # the grid without `obj`, made once
-        if (out := now.reach.out_with(others, base, pose)) > now.out:
+        if (out := now.reach.out_with(others, setup.blocked, pose)) > now.out:
             continue
         judged = exactly(setup, obj, cands, legal, terms, int(k))
         if judged["total"][k] <= now.energy + TOL:
@@ -253,10 +253,12 @@ def free_move(ep: Episode, now: Standing, obj, others: list[PlacedObject], cands
 
 
 def exactly(setup: CandidateEnergy, obj, cands: np.ndarray, legal: np.ndarray, terms: dict, k: int) -> dict:
-    """`terms` (of the `legal` poses) with pose `k`'s scored again with the free space labelled exactly: what a
-    move is judged by. The fast navigation term, fine for ranking poses, misses a way that the pose closes."""
-    exact = setup.score(obj, cands[legal[[k]]], nav_mode="exact")
-    return {t: np.where(np.arange(len(v)) == k, exact[t][0], v) for t, v in terms.items()}
+    """`terms` (of the `legal` poses) with pose `k`'s navigation term labelled exactly, and its total: what a move
+    is judged by. The fast navigation term, fine for ranking poses, misses a way that the pose closes."""
+    judged = {t: v.copy() for t, v in terms.items()}
+    judged["nav"][k] = setup.exact_navigation(obj, cands[legal[[k]]])[0]
+    judged["total"][k] = sum(WEIGHTS[t] * judged[t][k] for t in WEIGHTS)  # as `score` sums them
+    return judged
 
 
 def _relocation(ep: Episode, now: Standing, oid: str, poses: int = MAKE_WAY_POSES) -> Move | None:
@@ -302,7 +304,8 @@ def _relocation(ep: Episode, now: Standing, oid: str, poses: int = MAKE_WAY_POSE
         if again is None:
             continue
         placed, steps, final_setup = again
-        if met_among(ep, placed, changed) <= was or (out := len(now.reach.unreachable(placed))) > now.out:
+        if met_among(ep, placed, changed) <= was or \
+                (out := len(now.reach.unreachable(placed, reachable=final_setup.reach))) > now.out:
             continue
         new_energy = steps[-1].terms["total"]  # the last one placed again: nothing pending
         if new_energy <= now.energy + TOL:

@@ -23,7 +23,6 @@ from __future__ import annotations
 import numpy as np
 
 from models.energy.vectorised import CandidateEnergy
-from models.geometry import SweptBoxes
 from models.placement.base import StepObserver
 from models.placement.greedy import NO_ROOM, Episode
 from models.placement.habits import keep_companions
@@ -38,17 +37,16 @@ def _best_move(ep: Episode, now: Standing, oid: str) -> Move | None:
     poses of lowest energy, the first such), or None if no pose reaches more of them than now."""
     obj = ep.problem.plan.object(oid)
     others = [p for p in ep.placed if p.id != oid]
-    cands, body = ep.scorer.bodies(obj)
-    legal = legal_poses(ep, obj, others, cands, SweptBoxes(body), relax=False)
+    cands = ep.scorer.bodies(obj)[0]
+    legal = legal_poses(ep, obj, others, cands, ep.scorer.swept(obj), relax=False)
     if not len(legal):
         return None
     setup = now.setup.without(oid)
     terms = setup.score(obj, cands[legal])
-    base = now.reach.blocked(others)
     best = None
     for k in np.argsort(terms["total"], kind="stable")[:CHECKS]:
         pose = ep.scorer.place(obj, *(float(v) for v in cands[legal[k]]))
-        left = now.reach.out_with(others, base, pose)
+        left = now.reach.out_with(others, setup.blocked, pose)
         if left < now.out and (best is None or left < best.out):
             judged = exactly(setup, obj, cands, legal, terms, int(k))
             step = move_step(oid, pose, cands, legal, int(k), judged, "clearing the robot's way to the task objects")
@@ -71,8 +69,7 @@ def make_room(ep: Episode, observer: StepObserver | None = None) -> list[str]:
     placed or moved, in order."""
     done: list[str] = []
     for obj in [o for o in ep.order if ep.failed.get(o.id) == NO_ROOM and o.id not in ep.problem.fixed]:
-        cands, body = ep.scorer.bodies(obj)
-        swept = SweptBoxes(body)
+        cands, swept = ep.scorer.bodies(obj)[0], ep.scorer.swept(obj)
         for i, blockers in displacements(ep, obj, cands, swept, ep.placed):
             pose = ep.scorer.place(obj, *(float(v) for v in cands[i]))
             placed = [p for p in ep.placed if p.id not in blockers]
