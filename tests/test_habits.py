@@ -1,6 +1,8 @@
 """The companions' pass: habits read from the training rooms' prior, moves only when the layout keeps more
 of them at no constraint, energy or reach cost; never a fixed object, nothing in a crowded room."""
 
+import numpy as np
+
 from models.datasets import load_dataset
 from models.energy.exact import layout_energy
 from models.energy.prior import relation_prior
@@ -67,3 +69,19 @@ def test_fixed_objects_never_move_and_a_crowded_room_is_left_alone(monkeypatch):
         raise AssertionError("a crowded room's habits were looked up")
     monkeypatch.setattr(habits, "companions", not_asked)
     assert keep_companions(dense) == []
+
+
+def test_the_habits_kept_after_a_move_are_counted_again_only_where_the_move_can_change_them():
+    """`kept_with` (the companions' pass's test of a pose) equals `kept` of the whole moved layout."""
+    rng, checked, changed = np.random.default_rng(0), 0, 0
+    for plan in PLANS[:20]:
+        ep = _finished(plan)
+        h = Habits(plan, ep.placed)
+        now = h.kept()
+        for p in ep.placed:
+            cands, body = ep.scorer.bodies(plan.object(p.id))
+            for i in rng.choice(len(cands), size=min(5, len(cands)), replace=False):
+                whole = h.kept({**h.feet, p.id: body[i]})
+                assert h.kept_with(p.id, body[i], now) == whole, (plan.id, p.id)
+                checked, changed = checked + 1, changed + (whole != now)
+    assert checked > 500 and changed > 20  # moves that gain and lose habits, not only neutral ones

@@ -100,7 +100,7 @@ class CandidateEnergy:
         self.zones = {p.id: front_boxes(p.x, p.z, p.rotation, p.width, p.depth, self.clear[p.id])
                       for p in self.placed if self.clear[p.id] > 0}
         self.room_box = np.array([0.0, 0.0, w, d])
-        self._pairs: dict[tuple, float] = {}  # `_pair` by relation and poses (shared with `after`'s copies)
+        self._pairs: dict[tuple, float] = {}  # `_pair`, `_own` by relation and poses (shared with `after`'s copies)
         self._constant_terms()
         self.grid = nav.Grid(w, d)
         self.mesh = self.grid.mesh()
@@ -162,12 +162,9 @@ class CandidateEnergy:
         """What object `oid` at `pose` (its body (1, 4), its clearance zone or None) adds to the constant
         terms of this set-up, which does not hold it: (relational sum, relation count, collision, oob,
         affordance)."""
-        room, cons = self.room, self.problem.constraints
+        cons = self.problem.constraints
         oc = cons.objects[oid]
-        e, _ = placement(oc.placement, pose, room.width, room.depth)
-        touching = wall_clearance(pose, room.width, room.depth) <= WALL_TOUCH
-        rel_sum = float(e[0] * (1 + PRIOR_LAMBDA * self.prior.wall_energy(room.type, self.types[oid], touching)[0]))
-        rel_n = 1
+        rel_sum, rel_n = self._own(oid, oc.placement, pose), 1
         for c in oc.relations:
             if c.target in self.poses:
                 rel_sum += self._pair(c.name, oid, c.target, pose, self.poses[c.target])
@@ -236,6 +233,17 @@ class CandidateEnergy:
             e, _ = relation(name, a, b, gap=g)
         pe = self.prior.pair_energy(self.room.type, self.types[a_id], self.types[b_id], g, a.rotation - b.rotation)
         return e * (1 + PRIOR_LAMBDA * pe)
+
+    def _own(self, oid: str, name: str, pose: Poses) -> float:
+        """The relational energy of object `oid`'s global placement `name` at one pose, memoised as `_pair`."""
+        key = (name, oid, pose.x[0], pose.z[0], pose.rotation[0])
+        if (value := self._pairs.get(key)) is None:
+            room = self.room
+            e, _ = placement(name, pose, room.width, room.depth)
+            touching = wall_clearance(pose, room.width, room.depth) <= WALL_TOUCH
+            value = self._pairs[key] = float(
+                e[0] * (1 + PRIOR_LAMBDA * self.prior.wall_energy(room.type, self.types[oid], touching)[0]))
+        return value
 
     def _pair(self, name, a_id, b_id, a: Poses, b: Poses) -> float:
         """`_rel` of two single poses, memoised: adding and taking away objects judges the same pairs again."""

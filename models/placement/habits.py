@@ -80,6 +80,14 @@ class Habits:
         layout = self.feet if layout is None else layout
         return sum(int(self.near(q, box[None], layout)[0]) for q, box in layout.items() if self.types[q] in self.comp)
 
+    def kept_with(self, oid: str, box: np.ndarray, now: int) -> int:
+        """`kept` of this layout with `oid` at `box`, given `now`, this layout's: only the pairs of `oid` and of
+        the objects that keep its type near are counted again."""
+        layout, t = {**self.feet, oid: box}, self.types[oid]
+        again = [q for q in self.feet if q == oid or any(b == t for b, _ in self.comp.get(self.types[q], ()))]
+        return now + sum(int(self.near(q, layout[q][None], layout)[0]) - int(self.near(q, self.feet[q][None])[0])
+                         for q in again if self.types[q] in self.comp)
+
 
 def _move(ep: Episode, now: Standing, habits: Habits, p: PlacedObject, before: int) -> Move | None:
     """The best move of `p` in the layout `ep.placed`, which keeps `before` habits (see the module), or None."""
@@ -101,7 +109,7 @@ def _move(ep: Episode, now: Standing, habits: Habits, p: PlacedObject, before: i
     return free_move(ep, now, obj, others, cands, legal, gain, now.setup.without(p.id),
                      why=lambda pose: f"standing by its {', '.join(habits.beside(p.id, _footprint(pose)))}, as in the "
                                       "iTHOR rooms",
-                     accept=lambda pose: habits.kept({**habits.feet, p.id: _footprint(pose)}) > before)
+                     accept=lambda pose: habits.kept_with(p.id, _footprint(pose), before) > before)
 
 
 def keep_companions(ep: Episode, observer: StepObserver | None = None) -> list[str]:
