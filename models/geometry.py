@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from functools import lru_cache
+from functools import cache, lru_cache
 
 import numpy as np
 from shapely.geometry import Polygon, box
@@ -157,3 +157,35 @@ class SweptBoxes:
             dz = np.minimum(self.z1[lo:hi], bz1) - np.maximum(self.z0[lo:hi], bz0)
             hit = (dx > 0) & (dz > 0)
             yield self.order[lo:hi][hit], (dx * dz)[hit]
+
+    def overlapping(self, b: np.ndarray, tol: float, squared: np.ndarray | None = None) -> np.ndarray:
+        """Mask of the boxes overlapping some box of b (M, 4) by more than `tol`; with `squared` (N,), the
+        squared overlap areas are added to it, box by box of b in order: what a loop over `overlaps` computes,
+        to the bit (tested), in one compiled call."""
+        add = squared is not None
+        return _sweep_kernel()(self.x0, self.z0, self.x1, self.z1, self.order, self.max_width,
+                               np.asarray(b, float).reshape(-1, 4), tol, squared if add else np.zeros(0), add)
+
+
+def _sweep(x0, z0, x1, z1, order, max_width, b, tol, squared, add):
+    """`SweptBoxes.overlapping`'s loop, in the same floating-point operations as `overlaps` (compiled by numba)."""
+    mask = np.zeros(len(x0), np.bool_)
+    for m in range(b.shape[0]):
+        bx0, bz0, bx1, bz1 = b[m, 0], b[m, 1], b[m, 2], b[m, 3]
+        for k in range(np.searchsorted(x0, bx0 - max_width, side="left"), np.searchsorted(x0, bx1, side="left")):
+            dx = min(x1[k], bx1) - max(x0[k], bx0)
+            dz = min(z1[k], bz1) - max(z0[k], bz0)
+            if dx > 0 and dz > 0:
+                area = dx * dz
+                mask[order[k]] |= area > tol
+                if add:
+                    squared[order[k]] += area * area
+    return mask
+
+
+@cache
+def _sweep_kernel():
+    """`_sweep` compiled once per machine (numba's cache); numba is imported here, when a placer first needs it,
+    so that the CLI and the studio start without it."""
+    from numba import njit
+    return njit(cache=True)(_sweep)

@@ -1,4 +1,6 @@
 import math
+import subprocess
+import sys
 
 import numpy as np
 from hypothesis import given, settings
@@ -76,6 +78,24 @@ def test_swept_overlaps_equal_the_dense_ones(many, few):
     assert np.allclose(dense, swept, atol=1e-12)
 
 
+@settings(max_examples=50, deadline=None)  # the first call loads (or compiles) the kernel
+@given(st.lists(st.tuples(coords, coords, sizes, sizes, right_angles), min_size=1, max_size=30),
+       st.lists(st.tuples(coords, coords, sizes, sizes, right_angles), min_size=0, max_size=5),
+       st.sampled_from([0.0, 1e-4, 0.5, math.inf]))
+def test_the_compiled_sweep_equals_the_loop_over_overlaps_to_the_bit(many, few, tol):
+    """`SweptBoxes.overlapping` (numba) against the numpy loop it replaces in the hard filter and the energy."""
+    from models.geometry import SweptBoxes
+    a = np.concatenate([boxes([x], [z], w, d, [r]) for x, z, w, d, r in many])
+    b = np.concatenate([boxes([x], [z], w, d, [r]) for x, z, w, d, r in few]) if few else np.zeros((0, 4))
+    swept, mask, squared = SweptBoxes(a), np.zeros(len(a), bool), np.full(len(a), 0.25)
+    for idx, area in swept.overlaps(b):
+        mask[idx[area > tol]] = True
+        squared[idx] += area ** 2
+    compiled = np.full(len(a), 0.25)
+    assert np.array_equal(swept.overlapping(b, tol, compiled), mask)
+    assert np.array_equal(compiled, squared) and np.array_equal(swept.overlapping(b, tol), mask)
+
+
 @given(coords, coords, sizes, sizes, sizes, st.sampled_from([0.0, 90.0, 180.0, 270.0, 30.0, 45.0, 359.5]))
 def test_one_pose_shortcuts_equal_the_array_functions_to_the_bit(x, z, w, d, clearance, r):
     """`one_box` and `front_boxes` of one pose skip numpy's per-call cost; layouts must not change for it."""
@@ -87,3 +107,9 @@ def test_one_pose_shortcuts_equal_the_array_functions_to_the_bit(x, z, w, d, cle
     off = d / 2 + clearance / 2
     strip = boxes(x + np.sin(rad) * off, z + np.cos(rad) * off, w, clearance, np.array([r]))[0]
     assert np.array_equal(front_boxes(x, z, r, w, d, clearance), strip)
+
+
+def test_numba_is_imported_only_when_a_placer_first_sweeps():
+    code = ("import sys, app.cli, app.api, frontend.server, models.geometry, models.placement.greedy; "
+            "assert 'numba' not in sys.modules, 'numba imported at start-up'")
+    subprocess.run([sys.executable, "-c", code], check=True, timeout=120)

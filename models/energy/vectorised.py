@@ -316,8 +316,7 @@ class CandidateEnergy:
         else:
             swept = SweptBoxes(body)
             squared = np.zeros(n)
-            for idx, area in swept.overlaps(self.bodies):
-                squared[idx] += area ** 2
+            swept.overlapping(self.bodies, np.inf, squared)
         collision = np.log1p(self.collision_sum + squared)
         area = (body[:, 2] - body[:, 0]) * (body[:, 3] - body[:, 1])
         inside = overlap_many(body, self.room_box[None])[:, 0]

@@ -53,10 +53,7 @@ def hard_filter(scorer: CandidateScorer, obj: PlanObject, placed: list[PlacedObj
         return ok, squared
 
     def clear_of(swept: SweptBoxes, others, sq=None) -> None:
-        for idx, area in swept.overlaps(np.asarray(others, float).reshape(-1, 4)):
-            ok[idx[area > OVERLAP_TOL]] = False
-            if sq is not None:
-                sq[idx] += area ** 2
+        ok[swept.overlapping(others, OVERLAP_TOL, sq)] = False
 
     clear_of(swept, [p.body for p in placed], squared)
     clear_of(swept, scorer.door_zones)
