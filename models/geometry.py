@@ -10,10 +10,12 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from functools import cache, lru_cache
+from functools import lru_cache
 
 import numpy as np
 from shapely.geometry import Polygon, box
+
+from models.compiled import compiled
 
 
 def front(rotation: float) -> tuple[float, float]:
@@ -163,12 +165,13 @@ class SweptBoxes:
         squared overlap areas are added to it, box by box of b in order: what a loop over `overlaps` computes,
         to the bit (tested), in one compiled call."""
         add = squared is not None
-        return _sweep_kernel()(self.x0, self.z0, self.x1, self.z1, self.order, self.max_width,
-                               np.asarray(b, float).reshape(-1, 4), tol, squared if add else np.zeros(0), add)
+        return _sweep(self.x0, self.z0, self.x1, self.z1, self.order, self.max_width,
+                      np.asarray(b, float).reshape(-1, 4), tol, squared if add else np.zeros(0), add)
 
 
+@compiled
 def _sweep(x0, z0, x1, z1, order, max_width, b, tol, squared, add):
-    """`SweptBoxes.overlapping`'s loop, in the same floating-point operations as `overlaps` (compiled by numba)."""
+    """`SweptBoxes.overlapping`'s loop, in the same floating-point operations as `overlaps`."""
     mask = np.zeros(len(x0), np.bool_)
     for m in range(b.shape[0]):
         bx0, bz0, bx1, bz1 = b[m, 0], b[m, 1], b[m, 2], b[m, 3]
@@ -181,11 +184,3 @@ def _sweep(x0, z0, x1, z1, order, max_width, b, tol, squared, add):
                 if add:
                     squared[order[k]] += area * area
     return mask
-
-
-@cache
-def _sweep_kernel():
-    """`_sweep` compiled once per machine (numba's cache); numba is imported here, when a placer first needs it,
-    so that the CLI and the studio start without it."""
-    from numba import njit
-    return njit(cache=True)(_sweep)

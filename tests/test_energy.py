@@ -163,3 +163,20 @@ def test_the_terms_of_a_set_up_alone_are_the_exact_energy_of_its_objects(pipelin
         assert (exact["missing"] > 0) == (not pending)  # `obj` is charged as left out unless pending
         for term in exact:
             assert terms[term] == pytest.approx(exact[term], abs=1e-9), (pending, term)
+
+
+def test_the_flood_fill_reaches_what_labelling_the_free_space_reaches():
+    """`navigation.reachable_from` (a compiled flood fill) against the components scipy labels, on random grids
+    from nearly free to nearly blocked, including start cells that are blocked."""
+    from scipy import ndimage
+
+    from models.energy.navigation import reachable_from
+    rng = np.random.default_rng(0)
+    for _ in range(500):
+        nx, nz = rng.integers(1, 60, 2)
+        blocked = rng.random((nx, nz)) < rng.random()
+        start = np.zeros((nx, nz), bool)
+        start[rng.integers(0, nx, 3), rng.integers(0, nz, 3)] = True
+        labels, _ = ndimage.label(~blocked)
+        ids = np.unique(labels[start & ~blocked])
+        assert np.array_equal(reachable_from(blocked, start), np.isin(labels, ids[ids > 0]))

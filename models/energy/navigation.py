@@ -16,6 +16,7 @@ import shapely
 from scipy import ndimage
 from shapely.geometry import Polygon
 
+from models.compiled import compiled
 from models.energy.weights import ACCESS_DEPTH, NAV_CELL, ROBOT_RADIUS
 from models.geometry import Footprint
 from models.values import Room
@@ -91,12 +92,33 @@ def reachable_space(grid: Grid, blocked: np.ndarray, room: Room) -> np.ndarray:
 
 
 def reachable_from(blocked: np.ndarray, start: np.ndarray) -> np.ndarray:
-    """Free cells connected (4-neighbour) to a free cell of `start`."""
-    labels, n = ndimage.label(~blocked)
-    ids = np.unique(labels[start & ~blocked])
-    keep = np.zeros(n + 1, bool)
-    keep[ids[ids > 0]] = True
-    return keep[labels]
+    """Free cells connected (4-neighbour) to a free cell of `start` (both (nx, nz) masks)."""
+    return _flood(np.ascontiguousarray(blocked, np.bool_), np.ascontiguousarray(start, np.bool_))
+
+
+@compiled
+def _flood(blocked, start):
+    """`reachable_from` as a flood fill from the free start cells: the placers label the free space thousands of
+    times per plan, and labelling every component (scipy.ndimage.label) costs more than walking one."""
+    nx, nz = blocked.shape
+    out = np.zeros((nx, nz), np.bool_)
+    stack = np.empty(nx * nz, np.int64)
+    top = 0
+    for i in range(nx):
+        for j in range(nz):
+            if start[i, j] and not blocked[i, j]:
+                out[i, j] = True
+                stack[top] = i * nz + j
+                top += 1
+    while top:
+        top -= 1
+        i, j = stack[top] // nz, stack[top] % nz
+        for a, b in ((i - 1, j), (i + 1, j), (i, j - 1), (i, j + 1)):
+            if 0 <= a < nx and 0 <= b < nz and not blocked[a, b] and not out[a, b]:
+                out[a, b] = True
+                stack[top] = a * nz + b
+                top += 1
+    return out
 
 
 def _window(mesh: tuple[np.ndarray, np.ndarray], b: np.ndarray, radius: float):
