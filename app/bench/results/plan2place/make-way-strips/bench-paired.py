@@ -1,18 +1,22 @@
 """The placement bench's own runs before (cb684c1) and after the make-way change, paired: Plan2Place and greedy,
 new - old over the same (plan, seed) pairs (20 plans x 5 seeds per set), 95 % bootstrap intervals over plans.
 Both from the stored results.json (the old one from git). From the root:
-python app/bench/results/plan2place/make-way-strips/bench-paired.py > app/bench/results/plan2place/make-way-strips/bench-paired.md"""
+python app/bench/results/plan2place/make-way-strips/bench-paired.py > app/bench/results/plan2place/make-way-strips/bench-paired.md
+A later change passes its own "before" commit: `bench-paired.py ddc8c37 > ../exact-baseline/bench-paired.md` (the
+exact baseline and the compiled kernels); PTO is then paired too (two runs, each with two workers sharing the
+CPU, on different days: a rough figure, the speed bench is the measure)."""
 import json
 import subprocess
+import sys
 
 import numpy as np
 
 from app.bench.paired import cell, header, interval, paired
 
-BEFORE = "cb684c1"
+BEFORE = sys.argv[1] if len(sys.argv) > 1 else "cb684c1"
 SETS = ("seen", "unseen_a", "unseen_b", "dense", "human")
 METRICS = (("constraint_satisfaction", 100, True, 2), ("key_nav", 100, True, 2), ("cnt", 100, True, 2),
-           ("realism", 100, True, 2), ("energy", 1, False, 3))
+           ("realism", 100, True, 2), ("energy", 1, False, 3)) + ((("pto", 1000, False, 2),) if len(sys.argv) > 1 else ())
 
 
 def rows(ds: str, version: str | None) -> list[dict]:
