@@ -9,14 +9,18 @@ from functools import wraps
 
 
 def compiled(fn: Callable) -> Callable:
-    """`fn` compiled by `numba.njit(cache=True)` at its first call."""
+    """`fn` compiled by `numba.njit(cache=True)` at its first call; where numba finds no writable cache directory
+    (a read-only install and no writable home), compiled for this process only."""
     kernel: list[Callable] = []
 
     @wraps(fn)
     def call(*args):
         if not kernel:
             from numba import njit
-            kernel.append(njit(cache=True)(fn))
+            try:
+                kernel.append(njit(cache=True)(fn))
+            except RuntimeError:  # numba: "cannot cache function ...: no locator available"
+                kernel.append(njit(fn))
         return kernel[0](*args)
 
     return call

@@ -1,4 +1,5 @@
 import math
+import os
 import subprocess
 import sys
 
@@ -113,3 +114,14 @@ def test_numba_is_imported_only_when_a_placer_first_sweeps():
     code = ("import sys, app.cli, app.api, frontend.server, models.geometry, models.placement.greedy; "
             "assert 'numba' not in sys.modules, 'numba imported at start-up'")
     subprocess.run([sys.executable, "-c", code], check=True, timeout=120)
+
+
+def test_the_kernels_run_where_numba_can_cache_nothing():
+    """A read-only install without a writable home: numba finds no cache directory (forced here by allowing only
+    its IPython locator) and the kernels are compiled for the process instead of failing."""
+    code = ("import numpy as np; from models.geometry import SweptBoxes; from models.energy.navigation import "
+            "reachable_from; a = np.array([[0, 0, 1, 1.0]]); "
+            "assert SweptBoxes(a).overlapping(a, 1e-4).tolist() == [True]; "
+            "assert reachable_from(np.zeros((2, 2), bool), np.eye(2, dtype=bool)).all()")
+    env = {**os.environ, "NUMBA_CACHE_LOCATOR_CLASSES": "IPythonCacheLocator"}
+    subprocess.run([sys.executable, "-c", code], check=True, timeout=120, env=env)
