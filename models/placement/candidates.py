@@ -34,6 +34,15 @@ class PlacedObject:
     front: np.ndarray | None  # (4,) clearance box in front, or None
 
 
+def poses_of(cands: np.ndarray, obj: PlanObject, body: np.ndarray | None = None) -> Poses:
+    """The poses `cands` (N, 3) of `obj`; `body`: their boxes if known (`CandidateScorer.bodies`), the same numbers
+    `Poses.boxes` would compute (geometry.boxes on these poses), kept instead of computed again."""
+    poses = Poses(cands[:, 0], cands[:, 1], cands[:, 2], obj.size.x, obj.size.z)
+    if body is not None:
+        poses.__dict__["_boxes"] = body
+    return poses
+
+
 @dataclass
 class Shared:
     """What the soft score and the vectorised energy both compute for the same candidates of one object,
@@ -49,10 +58,7 @@ class Shared:
 
     @classmethod
     def of(cls, cands: np.ndarray, obj: PlanObject, body: np.ndarray | None = None) -> Shared:
-        poses = Poses(cands[:, 0], cands[:, 1], cands[:, 2], obj.size.x, obj.size.z)
-        if body is not None:  # the same numbers `Poses.boxes` would compute (geometry.boxes on these poses)
-            poses.__dict__["_boxes"] = body
-        return cls(poses)
+        return cls(poses_of(cands, obj, body))
 
     def wall_clearance(self, width: float, depth: float) -> np.ndarray:
         if self.clearance is None:
@@ -99,6 +105,7 @@ class CandidateScorer:
         self._grids: dict[tuple[float, float], np.ndarray] = {}
         self._bodies: dict[tuple[float, float], tuple[np.ndarray, np.ndarray]] = {}
         self._swept: dict[tuple[float, float], SweptBoxes] = {}
+        self._strips: dict[str, tuple[np.ndarray, SweptBoxes]] = {}
 
     def _door_zone(self, wall: str, center: float, width: float) -> list[float]:
         half, c = width / 2 + 0.05, DOOR_CLEARANCE
@@ -158,6 +165,22 @@ class CandidateScorer:
         if key not in self._swept:
             self._swept[key] = SweptBoxes(self.bodies(obj)[1])
         return self._swept[key]
+
+    def strips(self, obj: PlanObject, cands: np.ndarray, swept: SweptBoxes) -> tuple[np.ndarray, SweptBoxes]:
+        """(whether each pose's front clearance strip lies inside the room, the strips' sweep structure) for the
+        poses `cands` of `obj` (which has a clearance); made once per object when they are all its poses (`swept`
+        is `self.swept(obj)`), as every step and repair that looks at all of them asks again."""
+        every = swept is self._swept.get((obj.size.x, obj.size.z))
+        if every and obj.id in self._strips:
+            return self._strips[obj.id]
+        front = front_boxes(cands[:, 0], cands[:, 1], cands[:, 2], obj.size.x, obj.size.z,
+                            self.problem.clearance[obj.id])
+        inside = (front[:, 0] >= -1e-6) & (front[:, 1] >= -1e-6) & \
+            (front[:, 2] <= self.width + 1e-6) & (front[:, 3] <= self.depth + 1e-6)
+        made = inside, SweptBoxes(front)
+        if every:
+            self._strips[obj.id] = made
+        return made
 
     def place(self, obj: PlanObject, x: float, z: float, rotation: float) -> PlacedObject:
         clearance = self.problem.clearance.get(obj.id, 0.0)

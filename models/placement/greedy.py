@@ -19,7 +19,7 @@ from models.energy.vectorised import CandidateEnergy
 from models.energy.weights import WEIGHTS
 from models.placement.base import Fixed, PlacementStep, StepObserver
 from models.geometry import SweptBoxes
-from models.placement.candidates import OVERLAP_TOL, CandidateScorer, PlacedObject, Shared, front_boxes
+from models.placement.candidates import OVERLAP_TOL, CandidateScorer, PlacedObject, Shared
 from models.placement.problem import PlacementProblem
 from models.placement.reach import Reach
 from models.placement.result import make_layout
@@ -58,15 +58,12 @@ def hard_filter(scorer: CandidateScorer, obj: PlanObject, placed: list[PlacedObj
     clear_of(swept, [p.body for p in placed], squared)
     clear_of(swept, scorer.door_zones)
     if strict:
-        x, z, rot = cands[:, 0], cands[:, 1], cands[:, 2]
         problem = scorer.problem
-        clearance = problem.clearance.get(obj.id, 0.0)
         free = [p for p in placed if not problem.constraints.tied(obj.id, p.id)]
-        if clearance > 0:
-            front = front_boxes(x, z, rot, obj.size.x, obj.size.z, clearance)
-            ok &= (front[:, 0] >= -1e-6) & (front[:, 1] >= -1e-6) & \
-                (front[:, 2] <= scorer.width + 1e-6) & (front[:, 3] <= scorer.depth + 1e-6)
-            clear_of(SweptBoxes(front), [p.body for p in free])
+        if problem.clearance.get(obj.id, 0.0) > 0:
+            inside, strips = scorer.strips(obj, cands, swept)
+            ok &= inside
+            clear_of(strips, [p.body for p in free])
         clear_of(swept, [p.front for p in free if p.front is not None])
     return ok, squared
 

@@ -103,7 +103,7 @@ def _move(ep: Episode, now: Standing, habits: Habits, p: PlacedObject, before: i
         return None
     cands, body, gain = cands[better], body[better], gain[better]
     legal = legal_poses(ep, obj, others, cands, SweptBoxes(body), relax=False)
-    legal = legal[met(ep, p.id, cands[legal], others) >= met(ep, p.id, here(p), others)[0]]
+    legal = legal[met(ep, p.id, cands[legal], others, body[legal]) >= met(ep, p.id, here(p), others)[0]]
     if not len(legal):
         return None
     return free_move(ep, now, obj, others, cands, legal, gain, now.setup.without(p.id),

@@ -29,7 +29,7 @@ from models.energy.vectorised import CandidateEnergy
 from models.energy.weights import WEIGHTS
 from models.geometry import SweptBoxes
 from models.placement.base import PlacementStep, StepObserver
-from models.placement.candidates import PlacedObject
+from models.placement.candidates import PlacedObject, poses_of
 from models.placement.greedy import Episode, hard_filter
 from models.placement.moves import displacements, legal_poses, move_step
 from models.values import ConstraintPlan
@@ -41,11 +41,13 @@ TOL = 1e-9  # energy: "does not rise"
 MORE_MET = "meeting more of its constraints"  # a moved object's step reason
 
 
-def met(ep: Episode, oid: str, cands: np.ndarray, others: list[PlacedObject]) -> np.ndarray:
+def met(ep: Episode, oid: str, cands: np.ndarray, others: list[PlacedObject], body: np.ndarray | None = None
+        ) -> np.ndarray:
     """For each pose of `oid` in `cands` (N, 3): how many constraints that involve it are met with `others`
-    where they are (its global placement, its relations to them, theirs to it), as the metric counts them."""
+    where they are (its global placement, its relations to them, theirs to it), as the metric counts them.
+    `body`: the poses' boxes, if known."""
     obj, room = ep.problem.plan.object(oid), ep.problem.plan.room
-    poses = Poses(cands[:, 0], cands[:, 1], cands[:, 2], obj.size.x, obj.size.z)
+    poses = poses_of(cands, obj, body)
     objects = ep.problem.constraints.objects
     count = np.zeros(len(cands), int)
     if oid in objects:
@@ -137,14 +139,16 @@ def _relation_met(name: str, a: tuple, b: tuple) -> bool:
     return bool(relation(name, Poses.one(*a), Poses.one(*b))[1][0])
 
 
-def _legal_among(ep: Episode, oid: str, placed: list[PlacedObject], memo: dict) -> tuple[np.ndarray, np.ndarray]:
-    """(every candidate pose of `oid`, the indices of its legal ones among `placed`); `memo` keeps them per
-    layout, for the screen and the placing of one move share most."""
+def _legal_among(ep: Episode, oid: str, placed: list[PlacedObject], memo: dict
+                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(every candidate pose of `oid`, the indices of its legal ones among `placed`, how many constraints each of
+    those meets); `memo` keeps them per layout, for the screen and the placing of one move share most."""
     key = (oid, tuple(_key(p) for p in placed))
     if key not in memo:
         obj = ep.problem.plan.object(oid)
-        cands = ep.scorer.bodies(obj)[0]
-        memo[key] = cands, legal_poses(ep, obj, placed, cands, ep.scorer.swept(obj))
+        cands, body = ep.scorer.bodies(obj)
+        legal = legal_poses(ep, obj, placed, cands, ep.scorer.swept(obj))
+        memo[key] = cands, legal, met(ep, oid, cands[legal], placed, body[legal])
     return memo[key]
 
 
@@ -152,19 +156,21 @@ def _place_again(ep: Episode, movers: list[str], energy: CandidateEnergy, placed
                  why: str):
     """(`placed` with `movers` placed again in order, their steps, the energy set-up of the result): each at
     its legal pose meeting the most constraints, then of lowest energy (the later ones pending; `energy`: the
-    set-up of `placed` with `movers[1:]` pending; `why`: the steps' reason); None if one has no legal pose."""
+    set-up of `placed` with `movers[1:]` pending; `why`: the steps' reason); None if one has no legal pose. A step
+    shows the poses meeting the most, among which the energy chose."""
     placed, steps = list(placed), []
     for k, oid in enumerate(movers):
         obj = ep.problem.plan.object(oid)
-        cands, legal = _legal_among(ep, oid, placed, memo)
+        cands, legal, most = _legal_among(ep, oid, placed, memo)
         if not len(legal):
             return None
-        terms = energy.score(obj, cands[legal])
-        best = int(np.lexsort((terms["total"], -met(ep, oid, cands[legal], placed)))[0])
+        top = legal[most == most.max()]  # only these need an energy
+        terms = energy.score(obj, cands[top])
+        best = int(np.argmin(terms["total"]))
         if k == len(movers) - 1:  # the move is judged by this step's terms
-            terms = exactly(energy, obj, cands, legal, terms, best)
-        placed.append(ep.scorer.place(obj, *(float(v) for v in cands[legal[best]])))
-        steps.append(move_step(oid, placed[-1], cands, legal, best, terms, why))
+            terms = exactly(energy, obj, cands, top, terms, best)
+        placed.append(ep.scorer.place(obj, *(float(v) for v in cands[top[best]])))
+        steps.append(move_step(oid, placed[-1], cands, top, best, terms, why))
         energy = energy.after(placed[-1], pending=movers[k + 2:])
     return placed, steps, energy
 
@@ -174,10 +180,10 @@ def _most_met(ep: Episode, movers: list[str], placed: list[PlacedObject], memo: 
     energy computed: a cheap screen of what `_place_again` can reach); None if one has no legal pose."""
     placed = list(placed)
     for oid in movers:
-        cands, legal = _legal_among(ep, oid, placed, memo)
+        cands, legal, most = _legal_among(ep, oid, placed, memo)
         if not len(legal):
             return None
-        best = legal[int(np.argmax(met(ep, oid, cands[legal], placed)))]
+        best = legal[int(np.argmax(most))]
         placed.append(ep.scorer.place(ep.problem.plan.object(oid), *(float(v) for v in cands[best])))
     return placed
 
@@ -268,7 +274,7 @@ def _relocation(ep: Episode, now: Standing, oid: str, poses: int = MAKE_WAY_POSE
     others = [p for p in ep.placed if p is not current]
     obj = ep.problem.plan.object(oid)
     cands, body = ep.scorer.bodies(obj)
-    gain = met(ep, oid, cands, others) - int(met(ep, oid, here(current), others)[0])
+    gain = met(ep, oid, cands, others, body) - int(met(ep, oid, here(current), others)[0])
     better = np.flatnonzero(gain > 0)
     if not len(better):
         return None
