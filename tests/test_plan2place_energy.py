@@ -84,21 +84,29 @@ def test_per_step_shortcuts_compute_the_same_numbers():
 
 
 def test_blocked_cells_by_windows_equal_every_cell_against_every_box():
+    """The compiled window kernels (`blocked_by_boxes`, adding a box, taking one away) against every cell tested
+    against every box with numpy."""
     from models.energy import navigation as nav
     rng = np.random.default_rng(3)
     for width, depth in [(3.0, 4.2), (6.35, 5.1)]:
         grid = nav.Grid(width, depth)
-        gx, gz = grid.mesh()
-        for _ in range(20):
-            lo = rng.uniform(-0.5, [width, depth], size=(int(rng.integers(0, 8)), 2))
-            boxes = np.hstack([lo, lo + rng.uniform(0.01, 2.0, size=lo.shape)])
-            b = boxes[:, None, None, :]  # every cell against every box
+        mesh = gx, gz = grid.mesh()
+        r = nav.ROBOT_RADIUS
+
+        def every_cell(boxes):
+            b = boxes[:, None, None, :]
             dx = np.maximum(0, np.maximum(b[..., 0] - gx, gx - b[..., 2]))
             dz = np.maximum(0, np.maximum(b[..., 1] - gz, gz - b[..., 3]))
-            r = nav.ROBOT_RADIUS
-            want = (gx < r) | (gz < r) | (gx > width - r) | (gz > depth - r)
-            want |= (dx * dx + dz * dz <= r * r + 1e-12).any(axis=0)
+            walls = (gx < r) | (gz < r) | (gx > width - r) | (gz > depth - r)
+            return walls | (dx * dx + dz * dz <= r * r + 1e-12).any(axis=0)
+
+        for _ in range(20):
+            lo = rng.uniform(-0.5, [width, depth], size=(int(rng.integers(1, 8)), 2))
+            boxes = np.hstack([lo, lo + rng.uniform(0.01, 2.0, size=lo.shape)])
+            want = every_cell(boxes)
             assert np.array_equal(nav.blocked_by_boxes(grid, boxes), want)
+            assert np.array_equal(nav.blocked_with(mesh, every_cell(boxes[:-1]), boxes[-1]), want)
+            assert np.array_equal(nav.blocked_without(grid, mesh, want, boxes[-1], boxes[:-1]), every_cell(boxes[:-1]))
 
 
 def test_the_repairs_moves_carry_an_energy_setup_equal_to_a_fresh_one():

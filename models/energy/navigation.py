@@ -63,13 +63,11 @@ def blocked_by_polygons(grid: Grid, polygons: list[Polygon], radius: float = ROB
 
 
 def blocked_by_boxes(grid: Grid, boxes: np.ndarray, radius: float = ROBOT_RADIUS) -> np.ndarray:
-    """The same for axis-aligned boxes (M, 4), each evaluated only on the cells near it (`_window`)."""
-    mesh = grid.mesh()
-    gx, gz = mesh
+    """The same for axis-aligned boxes (M, 4), each evaluated only on the cells near it."""
+    gx, gz = grid.mesh()
     blocked = (gx < radius) | (gz < radius) | (gx > grid.width - radius) | (gz > grid.depth - radius)
     for b in np.asarray(boxes, float).reshape(-1, 4):
-        rows, cols, wx, wz = _window(mesh, b, radius)
-        blocked[rows, cols] |= _near(b, wx, wz, radius)
+        _mark_near(blocked, gx[:, 0], gz[0], b, b[None], radius, grid.width, grid.depth, False)
     return blocked
 
 
@@ -121,29 +119,36 @@ def _flood(blocked, start):
     return out
 
 
-def _window(mesh: tuple[np.ndarray, np.ndarray], b: np.ndarray, radius: float):
-    """(row slice, column slice, their cell centres x, z): the cells a robot of `radius` near box b touches."""
-    gx, gz = mesh
-    xs, zs = gx[:, 0], gz[0]
+@compiled
+def _mark_near(blocked, xs, zs, b, boxes, radius, width, depth, relabel):
+    """In the cells of centres `xs` x `zs` near box b (those a robot of `radius` near it can touch, with a cell's
+    width of margin): with `relabel`, set each to whether a wall or one of `boxes` (M, 4) lies within `radius` of
+    its centre; without, mark those within `radius` of one of `boxes`."""
     margin = radius + (xs[1] - xs[0] if len(xs) > 1 else 0.0)
-    rows = slice(np.searchsorted(xs, b[0] - margin), np.searchsorted(xs, b[2] + margin, side="right"))
-    cols = slice(np.searchsorted(zs, b[1] - margin), np.searchsorted(zs, b[3] + margin, side="right"))
-    return rows, cols, gx[rows, cols], gz[rows, cols]
-
-
-def _near(b: np.ndarray, wx: np.ndarray, wz: np.ndarray, radius: float) -> np.ndarray:
-    dx = np.maximum(0, np.maximum(b[0] - wx, wx - b[2]))
-    dz = np.maximum(0, np.maximum(b[1] - wz, wz - b[3]))
-    return dx * dx + dz * dz <= radius * radius + 1e-12
+    r0, r1 = np.searchsorted(xs, b[0] - margin), np.searchsorted(xs, b[2] + margin, side="right")
+    c0, c1 = np.searchsorted(zs, b[1] - margin), np.searchsorted(zs, b[3] + margin, side="right")
+    limit = radius * radius + 1e-12
+    for i in range(r0, r1):
+        x = xs[i]
+        for j in range(c0, c1):
+            z = zs[j]
+            near = relabel and (x < radius or z < radius or x > width - radius or z > depth - radius)
+            for m in range(boxes.shape[0]):
+                if near:
+                    break
+                dx = max(0.0, max(boxes[m, 0] - x, x - boxes[m, 2]))
+                dz = max(0.0, max(boxes[m, 1] - z, z - boxes[m, 3]))
+                near = dx * dx + dz * dz <= limit
+            if relabel or near:
+                blocked[i, j] = near
 
 
 def blocked_with(mesh: tuple[np.ndarray, np.ndarray], blocked: np.ndarray, b: np.ndarray,
                  radius: float = ROBOT_RADIUS) -> np.ndarray:
     """`blocked | blocked_by_boxes(grid, [b])` for a grid whose walls `blocked` already holds, evaluated only
     on the cells near the box b (farther cells are more than the robot's radius away); `mesh`: grid.mesh()."""
-    rows, cols, wx, wz = _window(mesh, b, radius)
-    out = blocked.copy()
-    out[rows, cols] |= _near(b, wx, wz, radius)
+    out, b = blocked.copy(), np.asarray(b, float)
+    _mark_near(out, mesh[0][:, 0], mesh[1][0], b, b[None], radius, 0.0, 0.0, False)
     return out
 
 
@@ -151,12 +156,9 @@ def blocked_without(grid: Grid, mesh: tuple[np.ndarray, np.ndarray], blocked: np
                     others: np.ndarray, radius: float = ROBOT_RADIUS) -> np.ndarray:
     """`blocked_by_boxes(grid, others)` for a grid `blocked` that also holds box b: only the cells near b
     (those b can block) are labelled again, by the walls and the `others` (M, 4) that reach them."""
-    rows, cols, wx, wz = _window(mesh, b, radius)
-    window = (wx < radius) | (wz < radius) | (wx > grid.width - radius) | (wz > grid.depth - radius)
-    for o in np.asarray(others, float).reshape(-1, 4):
-        window |= _near(o, wx, wz, radius)
     out = blocked.copy()
-    out[rows, cols] = window
+    _mark_near(out, mesh[0][:, 0], mesh[1][0], np.asarray(b, float), np.asarray(others, float).reshape(-1, 4),
+               radius, grid.width, grid.depth, True)
     return out
 
 
