@@ -71,6 +71,11 @@ def test_per_step_shortcuts_compute_the_same_numbers():
                 got = energy.reach_count.count_cells(np.maximum(s0, c0), np.minimum(s1, c1), np.maximum(t0, d0),
                                                      np.minimum(t1, d1))
                 assert np.array_equal(got, want)
+            fixed = energy.door_boxes + list(cut[:8])  # strips the same for every candidate (compiled)
+            door_open, reached = energy._strips_reached(fixed, len(energy.door_boxes), energy.reach_count.cells(cut))
+            by_counts = [energy._reachable_strip(strip, cut) for strip in fixed]
+            assert np.array_equal(door_open, np.any(by_counts[:len(energy.door_boxes)], axis=0))
+            assert np.array_equal(reached, np.sum(by_counts[len(energy.door_boxes):], axis=0))
             assert np.array_equal(energy.blocked, nav.blocked_by_boxes(energy.grid, energy.bodies))
             assert np.array_equal(energy.reach, nav.reachable_space(energy.grid, energy.blocked, plan.room))
             opts = ep.options()

@@ -18,6 +18,7 @@ from collections.abc import Collection
 import numpy as np
 
 from models.constraints.evaluate import Poses, box_gap, placement, relation, wall_clearance
+from models.compiled import compiled
 from models.energy import navigation as nav
 from models.energy.prior import WALL_TOUCH, relation_prior
 from models.energy.weights import ACCESS_DEPTH, AFF_BLOCKED, AFF_OUTSIDE, EPS, PRIOR_LAMBDA, ROBOT_RADIUS, WEIGHTS
@@ -66,6 +67,22 @@ class _Integral:
         i1, j1 = np.maximum(i1, i0), np.maximum(j1, j0)
         t = self.table
         return t[i1, j1] - t[i0, j1] - t[i1, j0] + t[i0, j0]
+
+
+@compiled
+def _sticking_out(c0, c1, d0, d1, held, doors):
+    """`CandidateEnergy._strips_reached`'s loop: for each candidate's cut (cell ranges c0:c1 x d0:d1), whether the
+    reachable cells' box `held[s]` of one of the first `doors` strips sticks out of it, and of how many others."""
+    door_open, reached = np.zeros(len(c0), np.bool_), np.zeros(len(c0))
+    for k in range(len(c0)):
+        for s in range(held.shape[0]):
+            out = held[s, 0] >= 0 and not (c0[k] <= held[s, 0] and c1[k] > held[s, 1] and d0[k] <= held[s, 2]
+                                           and d1[k] > held[s, 3])
+            if s < doors:
+                door_open[k] |= out
+            elif out:
+                reached[k] += 1.0
+    return door_open, reached
 
 
 def _intersect(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -353,25 +370,25 @@ class CandidateEnergy:
         rc = self.reach_count
         if not isinstance(cut, tuple):
             return (rc.count(strip) - rc.count(_intersect(np.broadcast_to(strip, cut.shape), cut))) > 0
-        if np.ndim(strip) == 1:  # one strip for all candidates: compare with its reachable cells' bounding box
-            return self._outside_cut(strip, cut)
         s0, s1, t0, t1 = rc.cells(np.asarray(strip))
         c0, c1, d0, d1 = cut
         inter = rc.count_cells(np.maximum(s0, c0), np.minimum(s1, c1), np.maximum(t0, d0), np.minimum(t1, d1))
         return (rc.count_cells(s0, s1, t0, t1) - inter) > 0
 
-    def _outside_cut(self, strip: np.ndarray, cut: tuple) -> np.ndarray:
-        """`_reachable_strip` for one strip (4,): the count of its reachable cells minus those in the cut is
-        positive exactly when the cut's cell range does not cover the bounding box of those cells (a box
-        sticking out of the cut has a reachable cell on its outermost row or column outside it)."""
-        s0, s1, t0, t1 = self.reach_count.cells_of_one(strip)
-        sub = self.reach[s0:max(s1, s0), t0:max(t1, t0)]
-        c0, c1, d0, d1 = cut
-        rows, cols = np.flatnonzero(sub.any(1)), np.flatnonzero(sub.any(0))
-        if not len(rows):
-            return np.zeros(len(c0), bool)
-        covered = (c0 <= s0 + rows[0]) & (c1 > s0 + rows[-1]) & (d0 <= t0 + cols[0]) & (d1 > t0 + cols[-1])
-        return ~covered
+    def _strips_reached(self, strips: list, doors: int, cut: tuple) -> tuple[np.ndarray, np.ndarray]:
+        """`_reachable_strip` for strips (4,) the same for every candidate, the first `doors` of them doorways:
+        (whether one of those holds a reachable cell outside each candidate's cut, how many of the others do). The
+        count of a strip's reachable cells minus those in the cut is positive exactly when the cut's cell range
+        does not cover the bounding box of those cells (a box sticking out of the cut has a reachable cell on its
+        outermost row or column outside it), so only that box is needed per strip."""
+        held = np.full((len(strips), 4), -1, np.int64)  # first row, last row, first column, last column
+        for k, strip in enumerate(strips):
+            s0, s1, t0, t1 = self.reach_count.cells_of_one(strip)
+            sub = self.reach[s0:max(s1, s0), t0:max(t1, t0)]
+            rows, cols = np.flatnonzero(sub.any(1)), np.flatnonzero(sub.any(0))
+            if len(rows):
+                held[k] = s0 + rows[0], s0 + rows[-1], t0 + cols[0], t0 + cols[-1]
+        return _sticking_out(*(np.ascontiguousarray(c, np.int64) for c in cut), held, doors)
 
     def _missing(self, obj: PlanObject) -> list[str]:
         """Plan objects neither placed, nor the candidate, nor pending."""
@@ -391,16 +408,13 @@ class CandidateEnergy:
         if n_targets == 0:
             return np.zeros(len(cands))
         cut = self.reach_count.cells(_inflate(body, ROBOT_RADIUS))
-        door_open = np.zeros(len(cands), bool)
-        for db in self.door_boxes:
-            door_open |= self._reachable_strip(db, cut)
-        reached = np.zeros(len(cands))
+        strips = []
         for p in targets:
             key = (p.x, p.z, p.rotation, p.width, p.depth)
-            strip = self._strips.get(key)
-            if strip is None:
-                strip = self._strips[key] = front_boxes(p.x, p.z, p.rotation, p.width, p.depth, ACCESS_DEPTH)
-            reached += self._reachable_strip(strip, cut)
+            if key not in self._strips:
+                self._strips[key] = front_boxes(p.x, p.z, p.rotation, p.width, p.depth, ACCESS_DEPTH)
+            strips.append(self._strips[key])
+        door_open, reached = self._strips_reached([*self.door_boxes, *strips], len(self.door_boxes), cut)
         if is_target:
             x, z, rot = cands[:, 0], cands[:, 1], cands[:, 2]
             strip = front_boxes(x, z, rot, obj.size.x, obj.size.z, ACCESS_DEPTH)
