@@ -70,9 +70,20 @@ class _Integral:
 
 
 @compiled
-def _sticking_out(c0, c1, d0, d1, held, doors):
+def _sticking_out(c0, c1, d0, d1, reach, ranges, doors):
     """`CandidateEnergy._strips_reached`'s loop: for each candidate's cut (cell ranges c0:c1 x d0:d1), whether the
-    reachable cells' box `held[s]` of one of the first `doors` strips sticks out of it, and of how many others."""
+    bounding box of the `reach`able cells of one of the first `doors` strips (their cell ranges `ranges`) sticks
+    out of it, and how many of the other strips' boxes do."""
+    held = np.full((ranges.shape[0], 4), -1, np.int64)  # first row, last row, first column, last column
+    for s in range(ranges.shape[0]):
+        for i in range(ranges[s, 0], ranges[s, 1]):
+            for j in range(ranges[s, 2], ranges[s, 3]):
+                if reach[i, j]:
+                    if held[s, 0] < 0:
+                        held[s, 0], held[s, 1], held[s, 2], held[s, 3] = i, i, j, j
+                    held[s, 1] = max(held[s, 1], i)
+                    held[s, 2] = min(held[s, 2], j)
+                    held[s, 3] = max(held[s, 3], j)
     door_open, reached = np.zeros(len(c0), np.bool_), np.zeros(len(c0))
     for k in range(len(c0)):
         for s in range(held.shape[0]):
@@ -381,14 +392,8 @@ class CandidateEnergy:
         count of a strip's reachable cells minus those in the cut is positive exactly when the cut's cell range
         does not cover the bounding box of those cells (a box sticking out of the cut has a reachable cell on its
         outermost row or column outside it), so only that box is needed per strip."""
-        held = np.full((len(strips), 4), -1, np.int64)  # first row, last row, first column, last column
-        for k, strip in enumerate(strips):
-            s0, s1, t0, t1 = self.reach_count.cells_of_one(strip)
-            sub = self.reach[s0:max(s1, s0), t0:max(t1, t0)]
-            rows, cols = np.flatnonzero(sub.any(1)), np.flatnonzero(sub.any(0))
-            if len(rows):
-                held[k] = s0 + rows[0], s0 + rows[-1], t0 + cols[0], t0 + cols[-1]
-        return _sticking_out(*(np.ascontiguousarray(c, np.int64) for c in cut), held, doors)
+        ranges = np.array([self.reach_count.cells_of_one(strip) for strip in strips], np.int64).reshape(-1, 4)
+        return _sticking_out(*(np.ascontiguousarray(c, np.int64) for c in cut), self.reach, ranges, doors)
 
     def _missing(self, obj: PlanObject) -> list[str]:
         """Plan objects neither placed, nor the candidate, nor pending."""
