@@ -3,15 +3,15 @@ pose may itself displace one object not yet moved in the attempt (of its `SECOND
 to its lowest-energy legal pose; `--deep` turns it on (without it: make_room as shipped, re-written here), and then
 an attempt must leave no more task objects out of reach. 20 diagnosis plans x 2 seeds.
 PYTHONPATH=. python app/bench/results/plan2place/dense-tries/deep-make-room.py dense 20 [--deep]"""
-import sys, time
+import sys
+from pathlib import Path
+
 import numpy as np
+
 import models.placement.repair as R
-from models.placement.greedy import NO_ROOM
-from models.placement.moves import displacements, legal_poses, move_step, scored
 from models.energy.vectorised import CandidateEnergy
-from models.datasets import load_dataset
-from models.placement.base import get_solver
-from app.bench.placement import score
+from models.placement.greedy import NO_ROOM
+from models.placement.moves import displacements, legal_poses, scored
 
 DEEP = "--deep" in sys.argv
 SECOND_TRIES = 3
@@ -82,18 +82,6 @@ def make_room(ep, observer=None):
     return done
 R.make_room = make_room
 
-ds, n = sys.argv[1], int(sys.argv[2])
-recs = load_dataset(ds, "validation" if ds == "seen" else None)
-step = max(len(recs) // 20, 1)
-off = [r for i, r in enumerate(recs) if i % step == step // 2][:n]
-sol = get_solver("plan2place")
-rows = []
-for r in off:
-    for seed in (0, 1):
-        t = time.perf_counter(); lay = sol.solve(r.plan, seed=seed); dt = time.perf_counter() - t
-        s = score(r.plan, lay)
-        assert s["collisions"] == 0
-        rows.append((s["cnt"], s["constraint_satisfaction"], s["key_nav"], s["energy"], dt / len(r.plan.objects)))
-a = np.array(rows)
-print("DEEP" if DEEP else "BASE", ds, "cnt %.2f cons %.2f keynav %.2f energy %.3f ms/obj %.2f" % (100 * a[:, 0].mean(), 100 * a[:, 1].mean(), 100 * a[:, 2].mean(), a[:, 3].mean(), 1000 * np.median(a[:, 4])), STATS)
-np.save(f"/tmp/exp/deep-{ds}-{'on' if DEEP else 'off'}.npy", a)
+sys.path.insert(0, str(Path(__file__).parent))
+from diagnosis_runs import run  # noqa: E402
+print(run(sys.argv[1], int(sys.argv[2]), "DEEP" if DEEP else "BASE", f"/tmp/deep-{sys.argv[1]}-{'on' if DEEP else 'off'}.npy"), STATS)

@@ -1,14 +1,14 @@
-"""Tried for `dense`, not kept (room-guard.txt): a room guard on top of the reach guard. Each pending object's relaxed-legal poses are kept as a
-mask, narrowed by each placed body; a pick that would leave some pending object with none (which had some) is
+"""Tried for `dense`, not kept (room-guard.txt): a room guard on top of the reach guard. Each pending object's
+relaxed-legal poses are kept as a mask, narrowed by each placed body; a pick that would leave some pending object with none (which had some) is
 passed over for the next most wanted one that also keeps reach. Off-sample diagnosis plans (i % step == step // 2), 2
 seeds. PYTHONPATH=. python app/bench/results/plan2place/dense-tries/room-guard.py dense 20 [--on]"""
-import sys, time
+import sys
+from pathlib import Path
+
 import numpy as np
-from models.datasets import load_dataset
+
 from models.placement import greedy as G
 from models.placement.candidates import OVERLAP_TOL
-from models.placement.base import get_solver
-from app.bench.placement import score
 
 ON = "--on" in sys.argv
 orig_guarded = G.Episode.guarded
@@ -61,17 +61,6 @@ def guarded(self, opts, order):
     return pick
 G.Episode.guarded = guarded
 
-ds, n = sys.argv[1], int(sys.argv[2])
-recs = load_dataset(ds, "validation" if ds == "seen" else None)
-step = max(len(recs) // 20, 1)
-off = [r for i, r in enumerate(recs) if i % step == step // 2][:n]
-sol = get_solver("plan2place")
-rows = []
-for i, r in enumerate(off):
-    for seed in (0, 1):
-        t = time.perf_counter(); lay = sol.solve(r.plan, seed=seed); dt = time.perf_counter() - t
-        s = score(r.plan, lay)
-        rows.append((s["cnt"], s["constraint_satisfaction"], s["key_nav"], s["energy"], dt / len(r.plan.objects)))
-a = np.array(rows)
-print("ON" if ON else "OFF", ds, "cnt %.2f cons %.2f keynav %.2f energy %.3f ms/obj %.2f" % (100 * a[:, 0].mean(), 100 * a[:, 1].mean(), 100 * a[:, 2].mean(), a[:, 3].mean(), 1000 * np.median(a[:, 4])), STATS)
-np.save(f"/tmp/exp/rg-{ds}-{'on' if ON else 'off'}.npy", a)
+sys.path.insert(0, str(Path(__file__).parent))
+from diagnosis_runs import run  # noqa: E402
+print(run(sys.argv[1], int(sys.argv[2]), "ON" if ON else "OFF", f"/tmp/rg-{sys.argv[1]}-{'on' if ON else 'off'}.npy"), STATS)
