@@ -291,8 +291,7 @@ class CandidateEnergy:
         missing = [o.id for o in self.problem.plan.objects if o.id not in done]
         targets = [p for p in self.placed if p.id in self.task]
         n_targets = len(targets) + sum(oid in self.task for oid in missing)
-        reached = sum(bool((self.reach & nav.in_box_mask(
-            self.grid, front_boxes(p.x, p.z, p.rotation, p.width, p.depth, ACCESS_DEPTH))).any()) for p in targets)
+        reached = sum(bool((self.reach & nav.in_box_mask(self.grid, self._access_strip(p))).any()) for p in targets)
         terms = {"rel": math.log1p(self.rel_sum / max(self.rel_n, 1)), "collision": math.log1p(self.collision_sum),
                  "oob": math.log1p(self.oob_sum), "nav": (1 - reached / n_targets) ** 2 if n_targets else 0.0,
                  "aff": self.aff_sum / max(len(self.zones), 1), "missing": len(missing) / max(self.n_objects, 1)}
@@ -395,6 +394,13 @@ class CandidateEnergy:
         ranges = np.array([self.reach_count.cells_of_one(strip) for strip in strips], np.int64).reshape(-1, 4)
         return _sticking_out(*(np.ascontiguousarray(c, np.int64) for c in cut), self.reach, ranges, doors)
 
+    def _access_strip(self, p) -> np.ndarray:
+        """The access strip (4,) in front of placed object `p`, made once per pose (shared with `after`'s copies)."""
+        key = (p.x, p.z, p.rotation, p.width, p.depth)
+        if key not in self._strips:
+            self._strips[key] = front_boxes(p.x, p.z, p.rotation, p.width, p.depth, ACCESS_DEPTH)
+        return self._strips[key]
+
     def _missing(self, obj: PlanObject) -> list[str]:
         """Plan objects neither placed, nor the candidate, nor pending."""
         done = {p.id for p in self.placed} | {obj.id} | self.pending
@@ -413,13 +419,8 @@ class CandidateEnergy:
         if n_targets == 0:
             return np.zeros(len(cands))
         cut = self.reach_count.cells(_inflate(body, ROBOT_RADIUS))
-        strips = []
-        for p in targets:
-            key = (p.x, p.z, p.rotation, p.width, p.depth)
-            if key not in self._strips:
-                self._strips[key] = front_boxes(p.x, p.z, p.rotation, p.width, p.depth, ACCESS_DEPTH)
-            strips.append(self._strips[key])
-        door_open, reached = self._strips_reached([*self.door_boxes, *strips], len(self.door_boxes), cut)
+        strips = [*self.door_boxes, *(self._access_strip(p) for p in targets)]
+        door_open, reached = self._strips_reached(strips, len(self.door_boxes), cut)
         if is_target:
             x, z, rot = cands[:, 0], cands[:, 1], cands[:, 2]
             strip = front_boxes(x, z, rot, obj.size.x, obj.size.z, ACCESS_DEPTH)
@@ -436,8 +437,7 @@ class CandidateEnergy:
         targets, is_target, n_targets = self._targets(obj)
         if n_targets == 0:
             return np.zeros(len(cands))
-        strips = [nav.in_box_mask(self.grid, front_boxes(p.x, p.z, p.rotation, p.width, p.depth, ACCESS_DEPTH))
-                  for p in targets]
+        strips = [nav.in_box_mask(self.grid, self._access_strip(p)) for p in targets]
         out = np.empty(len(cands))
         for i, (x, z, rot) in enumerate(cands):
             reach = self._reachable(self._blocked_with(body[i]))

@@ -12,7 +12,7 @@ from models.energy.vectorised import CandidateEnergy
 from models.energy.weights import WEIGHTS
 from models.geometry import SweptBoxes
 from models.placement.base import PlacementStep
-from models.placement.candidates import OVERLAP_TOL, PlacedObject, front_boxes
+from models.placement.candidates import OVERLAP_TOL, PlacedObject
 from models.placement.greedy import Episode, hard_filter
 
 MAX_BLOCKERS, TRIES = 3, 5  # displacements
@@ -92,8 +92,7 @@ def _mark_strips(ep: Episode, obj, cands: np.ndarray, swept: SweptBoxes, placed:
     theirs = [j for j in free if placed[j].front is not None]
     pairs = [(swept, theirs, [placed[j].front for j in theirs])]  # the pose in their clearance
     if depth > 0:  # they in the pose's
-        front = front_boxes(cands[:, 0], cands[:, 1], cands[:, 2], obj.size.x, obj.size.z, depth)
-        pairs.append((SweptBoxes(front), free, [placed[j].body for j in free]))
+        pairs.append((ep.scorer.strips(obj, cands, swept)[1], free, [placed[j].body for j in free]))
     for boxes_, js, others in pairs:
         for j, (idx, area) in zip(js, boxes_.overlaps(np.array(others).reshape(-1, 4))):
             way[idx[area > OVERLAP_TOL], j] = True
