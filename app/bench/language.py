@@ -42,9 +42,10 @@ FRESH = ("fresh id", "fresh ts", "fresh os")
 REVIEW = Path(__file__).parents[2] / "models/data/language/label_review.md"
 
 
-def _adapter_split(adapter: Path | None = None) -> tuple[tuple, list[int], list[int]]:
-    """id_train, the indices of the rows the shipped adapter trained on, and of those it never saw (its
-    run's held-out rows and those after its last step in the seeded epoch-0 order), sorted."""
+def _adapter_split(adapter: Path | None = None, train: list | None = None) -> tuple[tuple, list[int], list[int]]:
+    """id_train (or the `train` rows the adapter's run was given), the indices of the rows the adapter
+    trained on, and of those it never saw (its run's held-out rows and those after its last step in the
+    seeded epoch-0 order), sorted."""
     from models.datasets.language_sets import load_language_set
     from models.language.llm.parser import default_adapter
     from models.language.llm.train import META_FILE
@@ -52,7 +53,7 @@ def _adapter_split(adapter: Path | None = None) -> tuple[tuple, list[int], list[
     while "init" in meta:  # continued from another adapter on its own trained rows: that adapter's split
         meta = meta["init"]
     cfg, steps = meta["config"], meta["steps"]
-    train = load_language_set("id_train")
+    train = load_language_set("id_train") if train is None else train
     order = list(range(len(train)))
     random.Random(cfg["seed"]).shuffle(order)
     val, rest = order[:cfg["val_size"]], order[cfg["val_size"]:]
@@ -70,9 +71,10 @@ def unseen_train_rows(n: int | None = None, adapter: Path | None = None) -> list
     return [train[i] for i in (unseen[::max(1, len(unseen) // n)][:n] if n else unseen)]
 
 
-def trained_rows(adapter: Path | None = None) -> list:
-    """The id_train rows the shipped adapter trained on (the only rows `--augment` may use)."""
-    train, seen, _ = _adapter_split(adapter)
+def trained_rows(adapter: Path | None = None, train: list | None = None) -> list:
+    """The id_train rows (or of `train`, the rows its run was given) the shipped adapter (or `adapter`)
+    trained on: the only rows `--augment` may use."""
+    train, seen, _ = _adapter_split(adapter, train)
     return [train[i] for i in seen]
 
 

@@ -17,10 +17,12 @@ from models.language.llm.train import Example
 AUGMENT_SEED = 21  # of the augmentation's TS / OS rewrites: not the evaluation sets' (10), confirmation (11) or dev (13)
 
 
-def training_examples() -> list[Example]:
+def training_examples(skip_scenes: frozenset[str] = frozenset()) -> list[Example]:
+    """ALFRED `train` less the evaluation texts and the annotations of `skip_scenes` (floor plans held
+    out to measure a model on scenes it never saw)."""
     held_out = {text_key(a.instruction) for s in ("valid_seen", "valid_unseen") for a in load_annotations(s)}
     return [Example(a.instruction, a.room_type, fields_of(a)) for a in load_annotations("train")
-            if text_key(a.instruction) not in held_out]
+            if text_key(a.instruction) not in held_out and a.floor_plan not in skip_scenes]
 
 
 def augmented_examples(trained: list, kept_apart: set[str], seed: int = AUGMENT_SEED) -> list[Example]:
