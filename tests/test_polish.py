@@ -2,6 +2,7 @@
 few objects making way, only when more constraints are met at no energy or reach cost. Never a fixed
 object; each move a step; a layout with nothing broken is untouched."""
 
+import numpy as np
 import pytest
 
 from models.datasets import load_dataset
@@ -11,7 +12,10 @@ from models.metrics import scene_metrics
 from models.placement.candidates import OVERLAP_TOL
 from models.placement.greedy import Episode, GreedySolver, hard_filter
 from models.placement.moves import displacements
-from models.placement.polish import MAKE_WAY_POSES, MAKE_WAY_POSES_CROWDED, Standing, broken, crowded, polish
+from models.constraints.evaluate import placement
+from models.placement.candidates import poses_of
+from models.placement.polish import (MAKE_WAY_POSES, MAKE_WAY_POSES_CROWDED, Standing, broken, crowded, met, met_among,
+                                     polish)
 
 SEEN = {r.plan.id: r.plan for r in load_dataset("seen", "train")[:120]}
 
@@ -143,3 +147,24 @@ def test_the_polish_compares_a_move_with_the_exact_energy_of_the_layout_it_start
     _, energy, _ = _judged(plan, ep)
     assert ep.energy < energy - 1  # the plan is a case where the two differ
     assert Standing(ep).energy == pytest.approx(energy, abs=1e-9)
+
+
+@pytest.mark.parametrize("pid", ["seen-00002", "seen-00037"])
+def test_the_count_over_every_pose_agrees_with_the_count_of_the_layout(pid):
+    """`met` over an object's whole grid (its global placement computed once per object) and over some of its
+    poses gives, at the pose it stands on, what the layout's own count (`met_among`) gives."""
+    plan = SEEN[pid]
+    ep = _finished(plan)
+    checked = 0
+    for p in ep.placed:
+        obj, others = plan.object(p.id), [q for q in ep.placed if q is not p]
+        cands, body = ep.scorer.bodies(obj)
+        at = np.flatnonzero((np.abs(cands - [p.x, p.z, p.rotation]) < 1e-9).all(axis=1))
+        assert len(at) == 1  # a greedy pose is a grid pose
+        everywhere, here = met(ep, p.id, None, others), met(ep, p.id, at, others)
+        assert everywhere[at[0]] == here[0] == met_among(ep, ep.placed, {p.id})
+        name = ep.problem.constraints.objects[p.id].placement
+        fresh = placement(name, poses_of(cands, obj, body), plan.room.width, plan.room.depth)[1]
+        assert (ep.scorer.placement_met(obj, name) == fresh).all()
+        checked += everywhere[at[0]] > 0
+    assert checked  # some object meets something, so the counts are not all zero

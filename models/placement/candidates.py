@@ -106,6 +106,7 @@ class CandidateScorer:
         self._bodies: dict[tuple[float, float], tuple[np.ndarray, np.ndarray]] = {}
         self._swept: dict[tuple[float, float], SweptBoxes] = {}
         self._strips: dict[str, tuple[np.ndarray, SweptBoxes]] = {}
+        self._placement_met: dict[str, np.ndarray] = {}
 
     def _door_zone(self, wall: str, center: float, width: float) -> list[float]:
         half, c = width / 2 + 0.05, DOOR_CLEARANCE
@@ -181,6 +182,14 @@ class CandidateScorer:
         if every:
             self._strips[obj.id] = made
         return made
+
+    def placement_met(self, obj: PlanObject, name: str) -> np.ndarray:
+        """Whether each pose of `bodies` meets the global placement `name` (`edge`, `middle`) of `obj`: it does
+        not depend on the other objects, so it is computed once per object."""
+        if obj.id not in self._placement_met:
+            cands, body = self.bodies(obj)
+            self._placement_met[obj.id] = placement(name, poses_of(cands, obj, body), self.width, self.depth)[1]
+        return self._placement_met[obj.id]
 
     def place(self, obj: PlanObject, x: float, z: float, rotation: float) -> PlacedObject:
         clearance = self.problem.clearance.get(obj.id, 0.0)

@@ -23,7 +23,7 @@ from models.placement.base import StepObserver
 from models.placement.candidates import PlacedObject
 from models.placement.greedy import Episode
 from models.placement.moves import legal_poses
-from models.placement.polish import Move, Standing, crowded, free_move, here, met
+from models.placement.polish import Move, Standing, crowded, free_move, met, met_among
 from models.values import ConstraintPlan
 
 Companions = dict[str, list[tuple[str, float]]]  # type -> [(companion type, largest habitual gap)]
@@ -103,7 +103,7 @@ def _move(ep: Episode, now: Standing, habits: Habits, p: PlacedObject, before: i
         return None
     cands, body, gain = cands[better], body[better], gain[better]
     legal = legal_poses(ep, obj, others, cands, SweptBoxes(body), relax=False)
-    legal = legal[met(ep, p.id, cands[legal], others, body[legal]) >= met(ep, p.id, here(p), others)[0]]
+    legal = legal[met(ep, p.id, better[legal], others) >= met_among(ep, ep.placed, {p.id})]
     if not len(legal):
         return None
     return free_move(ep, now, obj, others, cands, legal, gain, now.setup.without(p.id),

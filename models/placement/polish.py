@@ -24,7 +24,7 @@ from functools import cached_property, lru_cache
 
 import numpy as np
 
-from models.constraints.evaluate import Poses, placement, relation, wall_clearance
+from models.constraints.evaluate import Poses, placement, relation
 from models.energy.vectorised import CandidateEnergy
 from models.energy.weights import WEIGHTS
 from models.geometry import SweptBoxes
@@ -41,19 +41,21 @@ TOL = 1e-9  # energy: "does not rise"
 MORE_MET = "meeting more of its constraints"  # a moved object's step reason
 
 
-def met(ep: Episode, oid: str, cands: np.ndarray, others: list[PlacedObject], body: np.ndarray | None = None
-        ) -> np.ndarray:
-    """For each pose of `oid` in `cands` (N, 3): how many constraints that involve it are met with `others`
-    where they are (its global placement, its relations to them, theirs to it), as the metric counts them.
-    `body`: the poses' boxes, if known."""
-    obj, room = ep.problem.plan.object(oid), ep.problem.plan.room
+def met(ep: Episode, oid: str, idx: np.ndarray | None, others: list[PlacedObject]) -> np.ndarray:
+    """For each pose `idx` of `oid` (indices into `ep.scorer.bodies`; None: all): how many constraints that
+    involve it are met with `others` where they are (its global placement, its relations to them, theirs to
+    it), as the metric counts them."""
+    obj = ep.problem.plan.object(oid)
+    cands, body = ep.scorer.bodies(obj)
+    if idx is not None:
+        cands, body = cands[idx], body[idx]
     poses = poses_of(cands, obj, body)
     objects = ep.problem.constraints.objects
     count = np.zeros(len(cands), int)
     if oid in objects:
         oc = objects[oid]
-        clearance = wall_clearance(poses, room.width, room.depth)
-        count += placement(oc.placement, poses, room.width, room.depth, clearance=clearance)[1]
+        ok = ep.scorer.placement_met(obj, oc.placement)
+        count += ok if idx is None else ok[idx]
         by_id = {p.id: p for p in others}
         for c in oc.relations:
             if c.target in by_id:
@@ -79,10 +81,6 @@ def _key(p: PlacedObject) -> tuple:
     return p.id, p.x, p.z, p.rotation
 
 
-def here(p: PlacedObject) -> np.ndarray:
-    return np.array([[p.x, p.z, p.rotation]])
-
-
 def broken(ep: Episode) -> list[str]:
     """Placed, movable objects with at least one constraint not met, most broken first."""
     missing = {}
@@ -90,8 +88,7 @@ def broken(ep: Episode) -> list[str]:
         if p.id in ep.problem.fixed:
             continue
         others = [q for q in ep.placed if q is not p]
-        total = _involved(ep, p.id, others)
-        missing[p.id] = total - int(met(ep, p.id, here(p), others)[0])
+        missing[p.id] = _involved(ep, p.id, others) - met_among(ep, ep.placed, {p.id})
     return sorted((i for i, n in missing.items() if n > 0), key=lambda i: -missing[i])
 
 
@@ -146,9 +143,9 @@ def _legal_among(ep: Episode, oid: str, placed: list[PlacedObject], memo: dict
     key = (oid, tuple(_key(p) for p in placed))
     if key not in memo:
         obj = ep.problem.plan.object(oid)
-        cands, body = ep.scorer.bodies(obj)
+        cands = ep.scorer.bodies(obj)[0]
         legal = legal_poses(ep, obj, placed, cands, ep.scorer.swept(obj))
-        memo[key] = cands, legal, met(ep, oid, cands[legal], placed, body[legal])
+        memo[key] = cands, legal, met(ep, oid, legal, placed)
     return memo[key]
 
 
@@ -274,7 +271,7 @@ def _relocation(ep: Episode, now: Standing, oid: str, poses: int = MAKE_WAY_POSE
     others = [p for p in ep.placed if p is not current]
     obj = ep.problem.plan.object(oid)
     cands, body = ep.scorer.bodies(obj)
-    gain = met(ep, oid, cands, others, body) - int(met(ep, oid, here(current), others)[0])
+    gain = met(ep, oid, None, others) - met_among(ep, ep.placed, {oid})
     better = np.flatnonzero(gain > 0)
     if not len(better):
         return None

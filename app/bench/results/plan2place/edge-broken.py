@@ -16,7 +16,7 @@ from models.energy.vectorised import CandidateEnergy
 from models.geometry import SweptBoxes
 from models.placement.base import get_solver
 from models.placement.greedy import Episode, hard_filter
-from models.placement.polish import here, met
+from models.placement.polish import met, met_among
 
 
 def on_wall(poses: Poses, room) -> np.ndarray:
@@ -41,7 +41,7 @@ def reasons(plan, layout) -> Counter:
                 else "no strict wall pose: objects would have to make way"] += 1
             continue
         idx = np.flatnonzero(strict)
-        gain = met(ep, p.id, cands[idx], others) - met(ep, p.id, here(p), others)[0]
+        gain = met(ep, p.id, idx, others) - met_among(ep, placed, {p.id})
         if gain.max() <= 0:
             out["a strict wall pose, but it meets no more constraints in all (relations lost)"] += 1
             continue
