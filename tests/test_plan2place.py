@@ -16,7 +16,7 @@ from models.metrics import scene_metrics  # noqa: E402
 from models.placement import PlacementProblem, get_solver  # noqa: E402
 from models.placement.greedy import Episode  # noqa: E402
 from models.placement.plan2place.agent import (  # noqa: E402
-    W_AUX, TrainConfig, export_weights, judge, losses, plot_curves, rollout, start_from, train)
+    W_AUX, TrainConfig, export_weights, losses, plot_curves, rollout, start_from, train)
 from models.placement.plan2place.features import CAND_DIM, choose_subset, observe  # noqa: E402
 from models.placement.plan2place.network import NetConfig, Plan2PlaceNet  # noqa: E402
 
@@ -68,7 +68,7 @@ def test_teacher_judges_candidates_by_greedy_completion():
     ep = Episode(plan)
     opts = ep.options()
     greedy_pick = int(np.argmin(opts.terms["total"]))
-    assert judge(ep, opts, [greedy_pick])[0] == pytest.approx(Episode(plan).finish_greedily())
+    assert ep.judge(opts, [greedy_pick])[0] == pytest.approx(Episode(plan).finish_greedily())
     torch.manual_seed(0)
     net = Plan2PlaceNet(NetConfig(hidden=16))
     _, trace = rollout(net, plan, np.random.default_rng(0), teacher=3)

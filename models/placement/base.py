@@ -69,6 +69,11 @@ def _greedy() -> Solver:
     return GreedySolver()
 
 
+def _lookahead() -> Solver:
+    from models.placement.lookahead import LookaheadSolver
+    return LookaheadSolver()
+
+
 def _plan2place() -> Solver:
     from models.placement.plan2place.solver import Plan2PlaceSolver
     return Plan2PlaceSolver()
@@ -79,7 +84,7 @@ def _plan2place_untrained() -> Solver:
     return untrained_solver()
 
 
-SOLVERS: dict[str, Callable[[], Solver]] = {"greedy": _greedy, "plan2place": _plan2place,
+SOLVERS: dict[str, Callable[[], Solver]] = {"greedy": _greedy, "lookahead": _lookahead, "plan2place": _plan2place,
                                             "plan2place_untrained": _plan2place_untrained, "dfs": _dfs, "milp": _milp,
                                             "milp_whole": _milp_whole, "z3": _z3}
 DEFAULT_SOLVER = "plan2place"

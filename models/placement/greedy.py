@@ -177,6 +177,30 @@ class Episode:
             self.apply(opts, int(np.argmin(opts.terms["total"])) if len(opts.feasible) else None)
         return self.energy
 
+    def judge(self, opts: Options, picks: np.ndarray) -> np.ndarray:
+        """For each feasible candidate `picks` (indices into `opts.feasible`) of this step: the final energy of
+        the episode with it placed and the objects still to come placed greedily (a one-step look-ahead)."""
+        finals = []
+        for pick in picks:
+            twin = self.fork()
+            twin.apply(opts, int(pick))
+            finals.append(twin.finish_greedily())
+        return np.array(finals)
+
+    def first_kept(self, opts: Options, order: np.ndarray, k: int) -> np.ndarray:
+        """The first `k` of the feasible candidates `order` (most wanted first; at most `GUARD_TRIES` tried) whose
+        placing leaves no more task objects out of the robot's reach; if none does, the first `k` (as
+        `guarded` takes the most wanted)."""
+        tried = order[:GUARD_TRIES]
+        kept = []
+        for pick, ok in zip(tried, self.reach.keeping(self.placed, self._poses(opts, tried), self.setup.blocked,
+                                                      self.setup.reach)):
+            if ok:
+                kept.append(int(pick))
+                if len(kept) == k:
+                    break
+        return np.array(kept) if kept else order[:k]
+
     def step_record(self, opts: Options, pick: int | None, probs: np.ndarray, why: str = "") -> PlacementStep:
         """What the studio shows: `probs` (M,) over the feasible candidates; -inf for the rest."""
         scores = np.full(len(opts.cands), -np.inf)

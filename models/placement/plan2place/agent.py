@@ -64,16 +64,6 @@ def semantic_of(ep: Episode) -> tuple[torch.Tensor, float]:
     return torch.from_numpy(s.features), s.score
 
 
-def judge(ep: Episode, opts, picks: list[int]) -> np.ndarray:
-    """Final energy of each feasible candidate in `picks`, the episode finished greedily after it."""
-    finals = []
-    for pick in picks:
-        twin = ep.fork()
-        twin.apply(opts, pick)
-        finals.append(twin.finish_greedily())
-    return np.array(finals)
-
-
 def rollout(net: Plan2PlaceNet, plan, rng: np.random.Generator, use_global: bool = True,
             teacher: int = 0, guard: bool = False) -> tuple[Episode, list[dict]]:
     """One training episode: actions drawn from the policy, with gradients (the solver's deterministic
@@ -99,7 +89,7 @@ def rollout(net: Plan2PlaceNet, plan, rng: np.random.Generator, use_global: bool
                           "r_vlm": r_vlm, "reward": 0.0})
             if teacher:  # the subset is sorted by immediate energy: its first `teacher` and the sampled one
                 judged = sorted(set(np.flatnonzero(allowed)[:teacher].tolist()) | {a})
-                finals = judge(ep, opts, [int(subset[j]) for j in judged])
+                finals = ep.judge(opts, subset[judged])
                 trace[-1]["judged"] = (dist.log_prob(torch.tensor(judged)),
                                        torch.from_numpy(finals.mean() - finals).float())
                 trace[-1]["best"] = dist.log_prob(torch.tensor(judged[int(np.argmin(finals))]))

@@ -22,7 +22,6 @@ from app.bench.placement import score
 from models.datasets import load_dataset
 from models.placement.base import get_solver
 from models.placement.greedy import Episode, GreedySolver
-from models.placement.plan2place.agent import judge
 from models.placement.plan2place.solver import Plan2PlaceSolver
 from models.placement.repair import repair
 
@@ -31,12 +30,18 @@ SETS = ("seen", "unseen_a", "unseen_b", "dense", "human")
 METRICS = (("energy", False), ("constraint_satisfaction", True), ("key_nav", True), ("cnt", True))
 
 
-class Oracle:
-    """The look-ahead oracle of the module's docstring."""
+def by_energy(ep, opts, rng) -> np.ndarray:
+    """The feasible candidates by immediate energy (greedy's seeded tie-break)."""
+    return np.argsort(opts.terms["total"] + rng.uniform(0, 1e-9, len(opts.feasible)), kind="stable")
 
-    def __init__(self, k: int, repaired: bool):
-        self.k, self.repaired = k, repaired
-        self.name = f"oracle K={k}" + ("" if repaired else ", no repair")
+
+class Oracle:
+    """The look-ahead oracle of the module's docstring; `propose(ep, opts, rng)` orders the feasible candidates
+    of which the first K are judged (default: by immediate energy)."""
+
+    def __init__(self, k: int, repaired: bool, propose=by_energy, label: str = ""):
+        self.k, self.repaired, self.propose = k, repaired, propose
+        self.name = f"oracle K={k}{label}" + ("" if repaired else ", no repair")
 
     def solve(self, plan, seed: int = 0):
         start, rng = time.perf_counter(), np.random.default_rng(seed)
@@ -44,11 +49,10 @@ class Oracle:
         while not ep.done:
             opts, pick = ep.options(), None
             if len(opts.feasible):
-                total = opts.terms["total"] + rng.uniform(0, 1e-9, len(opts.feasible))  # greedy's tie-break
-                order = np.argsort(total, kind="stable")[:self.k]
+                order = self.propose(ep, opts, rng)[:self.k]
                 kept = ep.keeping(opts, order)
                 judged = order[kept] if kept.any() else order
-                pick = int(judged[int(np.argmin(judge(ep, opts, [int(k) for k in judged])))])
+                pick = int(judged[int(np.argmin(ep.judge(opts, judged)))])
             ep.apply(opts, pick)
         if self.repaired:
             repair(ep)

@@ -16,7 +16,6 @@ import numpy as np
 
 from models.datasets import load_dataset
 from models.placement.greedy import Episode
-from models.placement.plan2place.agent import judge
 from models.placement.plan2place.features import choose_subset, observe
 from models.placement.plan2place.policy import shipped_policy, shipped_weights
 
@@ -40,7 +39,7 @@ def episode(plan, rng: np.random.Generator) -> list[dict]:
             rest = np.arange(LOWEST, len(subset))
             extra = rng.choice(rest, size=min(RANDOM, len(rest)), replace=False) if len(rest) else []
             judged = sorted({*range(min(LOWEST, len(subset))), a, *map(int, extra)})
-            finals = judge(ep, opts, [int(subset[j]) for j in judged])
+            finals = ep.judge(opts, subset[judged])
             steps.append({"plan": plan.id, "glob": obs.glob, "nodes": obs.nodes, "edges": obs.edges,
                           "cands": obs.cands, "judged": np.array(judged), "finals": finals, "policy": a})
             pick = int(subset[a])

@@ -1,0 +1,61 @@
+"""The look-ahead placer (`--solver lookahead`; not in the paper, not learned): greedy's candidates, but at each step
+the `LOOKAHEAD_K` of lowest immediate energy that keep the task objects within the robot's reach (the reach guard's
+test) are each placed and the episode finished greedily (`Episode.judge`), and the one that ends lowest is taken;
+then the same repairs as greedy and Plan2Place.
+
+It is one step of policy improvement over greedy, computed at every step instead of learned: the judgment that
+Plan2Place's training teacher makes, and that the network did not learn to predict (README, Plan2Place). Its
+layouts are better than Plan2Place's on most sets, for 5-10 x its time per object (15-25 ms), so it is offered as a
+slower, better option, not as the default. Past its time budget (the solvers' shared rule, `problem.time_budget`) it
+places like greedy.
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+from models.placement.base import Fixed, StepObserver
+from models.placement.greedy import Episode
+from models.placement.problem import time_budget
+from models.values import ConstraintPlan, Layout
+
+LOOKAHEAD_K = 4  # candidates judged per step: the oracle measured (app/bench/results/plan2place/lookahead-bound)
+HEAT = 0.05  # the heat-map's temperature over the judged candidates' final energies
+BEST_LATER = "of its lowest-energy poses, the one after which the objects still to come fit best"
+
+
+class LookaheadSolver:
+    name = "lookahead"
+
+    def __init__(self, k: int = LOOKAHEAD_K, repair: bool = True):
+        """`k`: candidates judged per step (1: greedy's placing); `repair`: finish with the repairs."""
+        if k < 1:
+            raise ValueError(f"the look-ahead judges at least one candidate per step, not {k}")
+        self.k, self.repair = k, repair
+
+    def solve(self, plan: ConstraintPlan, seed: int = 0, time_budget_s: float | None = None,
+              observer: StepObserver | None = None, fixed: Fixed | None = None) -> Layout:
+        start, budget = time.perf_counter(), time_budget(plan, time_budget_s)
+        rng = np.random.default_rng(seed)
+        ep = Episode(plan, fixed)
+        while not ep.done:
+            opts = ep.options()
+            pick, probs, why = None, np.zeros(len(opts.feasible)), ""
+            if len(opts.feasible):
+                total = opts.terms["total"] + rng.uniform(0, 1e-9, len(opts.feasible))  # greedy's seeded tie-break
+                late = time.perf_counter() - start > budget
+                judged = ep.first_kept(opts, np.argsort(total, kind="stable"), 1 if late else self.k)
+                finals = ep.judge(opts, judged) if len(judged) > 1 else np.zeros(1)
+                pick = int(judged[int(np.argmin(finals))])
+                probs[judged] = np.exp(-(finals - finals.min()) / HEAT)
+                probs /= probs.sum()
+                why = BEST_LATER if len(judged) > 1 and pick != judged[0] else ""
+            ep.apply(opts, pick)
+            if observer is not None:
+                observer(ep.step_record(opts, pick, probs, why))
+        if self.repair:
+            from models.placement.repair import repair  # it builds on greedy's Episode
+            repair(ep, observer)
+        return ep.layout(self.name, seed, time.perf_counter() - start)
