@@ -56,7 +56,7 @@ MALFORMED = {
 }
 
 
-@pytest.mark.parametrize("solver", [*SOLVERS, "greedy", "plan2place"])
+@pytest.mark.parametrize("solver", [*SOLVERS, "greedy", "plan2place", "lookahead"])
 @pytest.mark.parametrize("case", sorted(MALFORMED))
 def test_malformed_plans_never_crash(solver, case):
     objects, text = MALFORMED[case]
@@ -69,7 +69,7 @@ def test_malformed_plans_never_crash(solver, case):
         assert len(layout.warnings) >= 4
 
 
-@pytest.mark.parametrize("solver", ["greedy", "plan2place"])
+@pytest.mark.parametrize("solver", ["greedy", "plan2place", "lookahead"])
 def test_thirty_objects_in_a_small_room_are_placed_or_left_out_with_a_reason(solver):
     """More furniture than fits: the step-wise placers and their repairs finish, legal, every object accounted for."""
     types = [("Chair", 0.5, 0.5), ("SideTable", 0.6, 0.5), ("Shelf", 0.9, 0.4), ("Sofa", 2.0, 0.9), ("ArmChair", 0.9, 0.9)]
@@ -89,7 +89,7 @@ def test_place_command_runs_every_solver(tmp_path, capsys, solver):
     assert f'"solver": "{solver}"' in (tmp_path / "layout.json").read_text()
 
 
-@pytest.mark.parametrize("solver", [*SOLVERS, "greedy", "plan2place"])
+@pytest.mark.parametrize("solver", [*SOLVERS, "greedy", "plan2place", "lookahead"])
 def test_an_edit_replans_from_the_edited_point(pipeline, solver):
     """Objects placed before the first object whose constraints changed keep their poses."""
     from app.pipeline import kept_before_edit

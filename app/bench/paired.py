@@ -43,8 +43,8 @@ def header(first: str, metrics) -> list[str]:
             + " |", "| --- |" + " --- |" * len(metrics)]
 
 
-def stored_table(results, sets, metrics, other, caption: str, name_other: bool = False) -> str:
-    """A set x metric table of plan2place - `other(rows, metric, higher_is_better)` (a solver's name) from the
+def stored_table(results, sets, metrics, other, caption: str, name_other: bool = False, a: str = "plan2place") -> str:
+    """A set x metric table of `a` - `other(rows, metric, higher_is_better)` (a solver's name) from the
     placement bench's stored runs (`results`/placement-<set>/results.json); `metrics`: (name, scale, higher is
     better, digits); with `name_other`, each cell names the solver it is paired with."""
     import json
@@ -55,7 +55,7 @@ def stored_table(results, sets, metrics, other, caption: str, name_other: bool =
         cells = []
         for metric, scale, up, digits in metrics:
             name = other(rows, metric, up)
-            text = cell(*(scale * v for v in interval(paired(rows, metric, "plan2place", name), rng)), up, digits)
+            text = cell(*(scale * v for v in interval(paired(rows, metric, a, name), rng)), up, digits)
             cells.append(f"{text} vs {name}" if name_other else text)
         lines.append(f"| {s} | " + " | ".join(cells) + " |")
     return "\n".join(lines) + "\n"
