@@ -111,18 +111,19 @@ def test_accept_needs_exactly_one_of_scene_and_apartment(db_url, extra):
         assert "exactly one of scene (a single room) and apartment" in r.text
 
 
-def test_place_keeps_the_given_poses_and_names_a_stranger(db_url):
+@pytest.mark.parametrize("solver", ["greedy", "lookahead"])
+def test_place_keeps_the_given_poses_and_names_a_stranger(db_url, solver):
     """POST /place: the plan's layout with the kept poses as they are; a kept id not in the plan is a 422."""
     api = client(db_url)
     gen = api.post("/generate", json={"instruction": "Put a chilled bread on the counter", "room_type": "kitchen",
                                       "solver": "greedy"}).json()
     first = gen["layout"]["placements"][0]
     pose = [round(first["x"] + 0.05, 4), first["z"], first["rotation"]]
-    placed = api.post("/place", json={"plan": gen["plan"], "solver": "greedy", "keep": {first["id"]: pose}})
+    placed = api.post("/place", json={"plan": gen["plan"], "solver": solver, "keep": {first["id"]: pose}})
     assert placed.status_code == 200
     layout = placed.json()
     kept = next(p for p in layout["placements"] if p["id"] == first["id"])
-    assert [kept["x"], kept["z"], kept["rotation"]] == pose and layout["solver"] == "greedy"
+    assert [kept["x"], kept["z"], kept["rotation"]] == pose and layout["solver"] == solver
     assert len(layout["placements"]) == len(gen["layout"]["placements"])
     bad = api.post("/place", json={"plan": gen["plan"], "keep": {"sofa-9": [1, 1, 0]}})
     assert bad.status_code == 422 and "not objects of plan scene-0: sofa-9" in bad.text
