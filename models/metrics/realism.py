@@ -23,7 +23,6 @@ An unplaced object fails all its checks, so leaving objects out never scores bet
 from __future__ import annotations
 
 import json
-import math
 from collections import defaultdict
 from functools import cache
 from importlib import resources

@@ -9,6 +9,7 @@ the same repairs at the end (models.placement.repair).
 from __future__ import annotations
 
 import copy
+from collections.abc import Callable
 import time
 from dataclasses import dataclass
 from functools import cached_property
@@ -227,22 +228,41 @@ class GreedySolver:
     def solve(self, plan: ConstraintPlan, seed: int = 0, time_budget_s: float | None = None,
               observer: StepObserver | None = None, fixed: Fixed | None = None) -> Layout:
         start = time.perf_counter()
-        rng = np.random.default_rng(seed)
-        ep = Episode(plan, fixed)
-        while not ep.done:
-            opts = ep.options()
-            pick, probs, why = None, np.zeros(0), ""
-            if len(opts.feasible):
-                total = opts.terms["total"] + rng.uniform(0, 1e-9, len(opts.feasible))  # seeded tie-break
-                pick = int(np.argmin(total))
-                if self.guard and pick != (guarded := ep.guarded(opts, np.argsort(total, kind="stable"))):
-                    pick, why = guarded, WALLS_OFF
-                probs = np.exp(-(total - total.min()) / 0.05)
-                probs /= probs.sum()
-            ep.apply(opts, pick)
-            if observer is not None:
-                observer(ep.step_record(opts, pick, probs, why))
-        if self.repair:
-            from models.placement.repair import repair  # it builds on this module's Episode
-            repair(ep, observer)
+        ep = place_stepwise(plan, np.random.default_rng(seed), self._choose, fixed, observer, self.repair)
         return ep.layout(self.name, seed, time.perf_counter() - start)
+
+    def _choose(self, ep: Episode, opts: Options, rng: np.random.Generator) -> tuple[int, np.ndarray, str]:
+        total = tie_broken(opts, rng)
+        pick, why = int(np.argmin(total)), ""
+        if self.guard and pick != (guarded := ep.guarded(opts, np.argsort(total, kind="stable"))):
+            pick, why = guarded, WALLS_OFF
+        probs = np.exp(-(total - total.min()) / 0.05)
+        return pick, probs / probs.sum(), why
+
+
+Choose = Callable[[Episode, Options, np.random.Generator], tuple[int, np.ndarray, str]]
+
+
+def tie_broken(opts: Options, rng: np.random.Generator) -> np.ndarray:
+    """The feasible candidates' immediate energies with a seeded tie-break added."""
+    return opts.terms["total"] + rng.uniform(0, 1e-9, len(opts.feasible))
+
+
+def place_stepwise(plan: ConstraintPlan, rng: np.random.Generator, choose: Choose, fixed: Fixed | None = None,
+                   observer: StepObserver | None = None, repair: bool = True) -> Episode:
+    """One episode of a step-wise placer (greedy, look-ahead, Plan2Place): at each step with a legal candidate,
+    `choose(episode, options, rng)` gives (pick among the feasible candidates, probabilities for the heat-map, the
+    step's reason); each step is observed; then, with `repair`, the repairs."""
+    ep = Episode(plan, fixed)
+    while not ep.done:
+        opts = ep.options()
+        pick, probs, why = None, np.zeros(0), ""
+        if len(opts.feasible):
+            pick, probs, why = choose(ep, opts, rng)
+        ep.apply(opts, pick)
+        if observer is not None:
+            observer(ep.step_record(opts, pick, probs, why))
+    if repair:
+        from models.placement.repair import repair as repair_layout  # it builds on this module's Episode
+        repair_layout(ep, observer)
+    return ep

@@ -17,7 +17,7 @@ import time
 import numpy as np
 
 from models.placement.base import Fixed, StepObserver
-from models.placement.greedy import Episode
+from models.placement.greedy import Episode, Options, place_stepwise, tie_broken
 from models.placement.problem import time_budget
 from models.values import ConstraintPlan, Layout
 
@@ -37,25 +37,17 @@ class LookaheadSolver:
 
     def solve(self, plan: ConstraintPlan, seed: int = 0, time_budget_s: float | None = None,
               observer: StepObserver | None = None, fixed: Fixed | None = None) -> Layout:
-        start, budget = time.perf_counter(), time_budget(plan, time_budget_s)
-        rng = np.random.default_rng(seed)
-        ep = Episode(plan, fixed)
-        while not ep.done:
-            opts = ep.options()
-            pick, probs, why = None, np.zeros(len(opts.feasible)), ""
-            if len(opts.feasible):
-                total = opts.terms["total"] + rng.uniform(0, 1e-9, len(opts.feasible))  # greedy's seeded tie-break
-                late = time.perf_counter() - start > budget
-                judged = ep.first_kept(opts, np.argsort(total, kind="stable"), 1 if late else self.k)
-                finals = ep.judge(opts, judged) if len(judged) > 1 else np.zeros(1)
-                pick = int(judged[int(np.argmin(finals))])
-                probs[judged] = np.exp(-(finals - finals.min()) / HEAT)
-                probs /= probs.sum()
-                why = BEST_LATER if len(judged) > 1 and pick != judged[0] else ""
-            ep.apply(opts, pick)
-            if observer is not None:
-                observer(ep.step_record(opts, pick, probs, why))
-        if self.repair:
-            from models.placement.repair import repair  # it builds on greedy's Episode
-            repair(ep, observer)
+        start = time.perf_counter()
+        deadline = start + time_budget(plan, time_budget_s)
+
+        def choose(ep: Episode, opts: Options, rng: np.random.Generator) -> tuple[int, np.ndarray, str]:
+            k = 1 if time.perf_counter() > deadline else self.k
+            judged = ep.first_kept(opts, np.argsort(tie_broken(opts, rng), kind="stable"), k)
+            finals = ep.judge(opts, judged) if len(judged) > 1 else np.zeros(1)
+            best = int(np.argmin(finals))
+            probs = np.zeros(len(opts.feasible))
+            probs[judged] = np.exp(-(finals - finals.min()) / HEAT)
+            return int(judged[best]), probs / probs.sum(), BEST_LATER if best else ""
+
+        ep = place_stepwise(plan, np.random.default_rng(seed), choose, fixed, observer, self.repair)
         return ep.layout(self.name, seed, time.perf_counter() - start)

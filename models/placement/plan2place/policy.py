@@ -17,9 +17,8 @@ from pathlib import Path
 
 import numpy as np
 
-from models.placement.repair import repair as repair_layout
 from models.placement.base import Fixed, StepObserver
-from models.placement.greedy import WALLS_OFF, Episode
+from models.placement.greedy import WALLS_OFF, Episode, Options, place_stepwise
 from models.placement.plan2place.features import ENERGY_GAP, Observation, choose_subset, observe
 from models.values import ConstraintPlan
 
@@ -147,24 +146,18 @@ def place(policy: Policy, plan: ConstraintPlan, rng: np.random.Generator, use_gl
     """One deterministic episode: each object at the most probable of its candidates (fixed poses kept; with
     `guard`, the most probable that walls off no task object, `Episode.guarded`), then, with `repair`, the
     repairs (models.placement.repair)."""
-    ep = Episode(plan, fixed)
-    while not ep.done:
-        opts = ep.options()
-        pick, probs, why = None, np.zeros(len(opts.feasible)), ""
-        if len(opts.feasible) and opts.obj.id in ep.problem.fixed:
-            pick, probs = 0, np.ones(1)
-        elif len(opts.feasible):
-            subset = choose_subset(opts, rng)
-            logits = policy(observe(ep, opts, subset, use_global))
-            a = int(np.argmax(logits))
-            p = np.exp(logits - logits[a])
-            probs[subset] = p / p.sum()
-            pick = int(subset[a])
-            if guard and pick != (guarded := ep.guarded(opts, subset[np.argsort(-logits, kind="stable")])):
-                pick, why = guarded, WALLS_OFF
-        ep.apply(opts, pick)
-        if observer is not None:
-            observer(ep.step_record(opts, pick, probs, why))
-    if repair:
-        repair_layout(ep, observer)
-    return ep
+    def choose(ep: Episode, opts: Options, rng: np.random.Generator) -> tuple[int, np.ndarray, str]:
+        if opts.obj.id in ep.problem.fixed:
+            return 0, np.ones(1), ""
+        subset = choose_subset(opts, rng)
+        logits = policy(observe(ep, opts, subset, use_global))
+        a = int(np.argmax(logits))
+        p = np.exp(logits - logits[a])
+        probs = np.zeros(len(opts.feasible))
+        probs[subset] = p / p.sum()
+        pick = int(subset[a])
+        if guard and pick != (guarded := ep.guarded(opts, subset[np.argsort(-logits, kind="stable")])):
+            return guarded, probs, WALLS_OFF
+        return pick, probs, ""
+
+    return place_stepwise(plan, rng, choose, fixed, observer, repair)

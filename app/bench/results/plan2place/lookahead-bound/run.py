@@ -27,7 +27,8 @@ from models.placement.repair import repair
 
 HERE = Path(__file__).parent
 SETS = ("seen", "unseen_a", "unseen_b", "dense", "human")
-METRICS = (("energy", False), ("constraint_satisfaction", True), ("key_nav", True), ("cnt", True))
+METRICS = (("energy", 1, False, 3), ("constraint_satisfaction", 100, True, 2), ("key_nav", 100, True, 2),
+           ("cnt", 100, True, 2))  # name, scale, higher is better, digits
 
 
 def by_energy(ep, opts, rng) -> np.ndarray:
@@ -65,46 +66,59 @@ def diagnosis_plans(ds: str, n: int) -> list:
     return [r.plan for i, r in enumerate(recs) if i % step == step // 2][:n]
 
 
-def main(n: int, k: int) -> int:
-    solvers = [GreedySolver(), get_solver("plan2place"), Oracle(k, True), GreedySolver(repair=False),
-               Plan2PlaceSolver(repair=False, name="plan2place, no repair"), Oracle(k, False)]
+def runs(plans_of, solvers, metrics=METRICS) -> list[dict]:
+    """Every solver on the plans `plans_of(set)` of each set, seeds 0 and 1: one row per run with its `metrics`
+    and its time per object (ms)."""
     rows = []
     for ds in SETS:
-        for plan in diagnosis_plans(ds, n):
+        for plan in plans_of(ds):
             for seed in (0, 1):
                 for s in solvers:
                     t = time.perf_counter()
                     layout = s.solve(plan, seed=seed)
                     ms = 1000 * (time.perf_counter() - t) / len(plan.objects)
-                    scored = score(plan, layout)
+                    got = score(plan, layout)
                     rows.append({"set": ds, "plan": plan.id, "seed": seed, "solver": s.name, "ms": ms,
-                                 **{m: scored[m] for m, _ in METRICS}})
+                                 **{m: got[m] for m, *_ in metrics}})
         print(ds, "done", flush=True)
-    (HERE / "rows.json").write_text(json.dumps(rows) + "\n")
-    rng = np.random.default_rng(0)
-    lines = [f"Look-ahead oracle (K = {k}) against greedy and Plan2Place, {n} diagnosis plans per set x 2 seeds "
-             "(run.py); means, then the oracle minus each with a 95 % plan-bootstrap interval (bold: the oracle "
-             "better, clear of 0); metrics x 100 but energy; ms per object, median", ""]
-    names = [s.name for s in solvers]
-    lines += ["| set | solver | " + " | ".join(m for m, _ in METRICS) + " | ms |", "| --- | --- |" + " ---: |" * 5]
+    return rows
+
+
+def mean_lines(rows: list[dict], names: list[str], metrics=METRICS) -> list[str]:
+    """A table of each solver's means per set (scaled) and its median time per object."""
+    lines = ["| set | solver | " + " | ".join(m for m, *_ in metrics) + " | ms p50 |",
+             "| --- | --- |" + " ---: |" * (len(metrics) + 1)]
     for ds in SETS:
         for name in names:
             mine = [r for r in rows if r["set"] == ds and r["solver"] == name]
-            scale = {m: 1 if m == "energy" else 100 for m, _ in METRICS}
-            lines.append(f"| {ds} | {name} | " + " | ".join(
-                f"{scale[m] * np.mean([r[m] for r in mine]):.3f}" if m == "energy" else
-                f"{scale[m] * np.mean([r[m] for r in mine]):.2f}" for m, _ in METRICS) +
-                f" | {np.median([r['ms'] for r in mine]):.1f} |")
-    lines += ["", "| set | oracle minus | " + " | ".join(m for m, _ in METRICS) + " |", "| --- | --- |" + " --- |" * 4]
+            lines.append(f"| {ds} | {name} | " + " | ".join(f"{sc * np.mean([r[m] for r in mine]):.{d}f}"
+                                                         for m, sc, _, d in metrics) +
+                         f" | {np.median([r['ms'] for r in mine]):.1f} |")
+    return lines
+
+
+def paired_lines(rows: list[dict], pairs: list[tuple[str, str]], metrics=METRICS) -> list[str]:
+    """A table of a - b per set for each (a, b) of `pairs`, with 95 % plan-bootstrap intervals."""
+    rng = np.random.default_rng(0)
+    lines = ["| set | pair | " + " | ".join(m for m, *_ in metrics) + " |", "| --- | --- |" + " --- |" * len(metrics)]
     for ds in SETS:
         mine = [r for r in rows if r["set"] == ds]
-        for a, b in ((names[2], names[0]), (names[2], names[1]), (names[5], names[3]), (names[5], names[4])):
-            cells = []
-            for m, higher in METRICS:
-                scale = 1 if m == "energy" else 100
-                diffs = {p: [scale * d for d in v] for p, v in paired(mine, m, a, b).items()}
-                cells.append(cell(*interval(diffs, rng), higher, digits=3 if m == "energy" else 2))
-            lines.append(f"| {ds} | {b} | " + " | ".join(cells) + " |")
+        for a, b in pairs:
+            cells = [cell(*(sc * v for v in interval(paired(mine, m, a, b), rng)), up, d) for m, sc, up, d in metrics]
+            lines.append(f"| {ds} | {a} - {b} | " + " | ".join(cells) + " |")
+    return lines
+
+
+def main(n: int, k: int) -> int:
+    solvers = [GreedySolver(), get_solver("plan2place"), Oracle(k, True), GreedySolver(repair=False),
+               Plan2PlaceSolver(repair=False, name="plan2place, no repair"), Oracle(k, False)]
+    rows = runs(lambda ds: diagnosis_plans(ds, n), solvers)
+    (HERE / "rows.json").write_text(json.dumps(rows) + "\n")
+    names = [s.name for s in solvers]
+    lines = [f"Look-ahead oracle (K = {k}) against greedy and Plan2Place, {n} diagnosis plans per set x 2 seeds "
+             "(run.py); means, then the oracle minus each with a 95 % plan-bootstrap interval (bold: the oracle "
+             "better, clear of 0); metrics x 100 but energy; ms per object, median", "", *mean_lines(rows, names), "",
+             *paired_lines(rows, [(names[2], names[0]), (names[2], names[1]), (names[5], names[3]), (names[5], names[4])])]
     (HERE / "bound.md").write_text("\n".join(lines) + "\n")
     print("\n".join(lines))
     return 0
