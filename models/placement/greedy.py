@@ -9,8 +9,8 @@ the same repairs at the end (models.placement.repair).
 from __future__ import annotations
 
 import copy
-from collections.abc import Callable
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
 from functools import cached_property
 

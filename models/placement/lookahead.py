@@ -5,9 +5,9 @@ then the same repairs as greedy and Plan2Place.
 
 It is one step of policy improvement over greedy, computed at every step instead of learned: the judgment that
 Plan2Place's training teacher makes, and that the network did not learn to predict (README, Plan2Place). Its
-layouts are better than Plan2Place's on most sets, for 5-10 x its time per object (15-25 ms), so it is offered as a
-slower, better option, not as the default. Past its time budget (the solvers' shared rule, `problem.time_budget`) it
-places like greedy.
+layouts have a lower energy than Plan2Place's on every set, for 4-7 x its time per object (13-24 ms), so it is
+offered as a slower, better option, not as the default. Past its time budget (the solvers' shared rule,
+`problem.time_budget`) it places like greedy.
 """
 
 from __future__ import annotations
