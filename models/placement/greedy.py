@@ -150,9 +150,7 @@ class Episode:
         task objects out of the robot's reach (models.placement.reach); the most wanted if each of them walls
         one off. A step-wise placer's energy sees only the objects placed so far, so a pose that walls off an
         access strip can look best."""
-        order = order[:GUARD_TRIES]
-        kept = self.reach.first_keeping(self.placed, self._poses(opts, order), self.setup.blocked, self.setup.reach)
-        return int(order[0 if kept is None else kept])
+        return int(self.first_kept(opts, order, 1)[0])
 
     def keeping(self, opts: Options, ks: np.ndarray) -> np.ndarray:
         """For each feasible candidate `ks` (indices into `opts.feasible`): does placing it leave no more task
@@ -190,8 +188,8 @@ class Episode:
 
     def first_kept(self, opts: Options, order: np.ndarray, k: int) -> np.ndarray:
         """The first `k` of the feasible candidates `order` (most wanted first; at most `GUARD_TRIES` tried) whose
-        placing leaves no more task objects out of the robot's reach; if none does, the first `k` (as
-        `guarded` takes the most wanted)."""
+        placing leaves no more task objects out of the robot's reach; if none does, the first `k` (`guarded` is
+        this with k = 1)."""
         tried = order[:GUARD_TRIES]
         kept = []
         for pick, ok in zip(tried, self.reach.keeping(self.placed, self._poses(opts, tried), self.setup.blocked,

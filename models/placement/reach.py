@@ -1,6 +1,6 @@
 """Which task objects the robot can reach from the doorway (Key_NAV's test: a free cell of the object's access
 strip connected to a doorway cell), on the navigation grid of one room: what the repairs restore and what a
-placer's reach guard keeps (`Episode.guarded`)."""
+placer's reach guard keeps (`Episode.guarded`, `Episode.first_kept`)."""
 
 from __future__ import annotations
 
@@ -54,9 +54,3 @@ class Reach:
         grids of `placed` (an energy set-up's)."""
         now = len(self.unreachable(placed, reachable=reachable))
         return (self.out_with(placed, blocked, pose) <= now for pose in poses)
-
-    def first_keeping(self, placed: list[PlacedObject], poses: Iterable[PlacedObject], blocked: np.ndarray,
-                      reachable: np.ndarray) -> int | None:
-        """The index of the first of `poses` (most wanted first) that `keeping` keeps; None if each of them
-        walls a task object off."""
-        return next((k for k, ok in enumerate(self.keeping(placed, poses, blocked, reachable)) if ok), None)
