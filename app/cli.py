@@ -313,10 +313,11 @@ def cmd_train_language(args) -> int:
 def cmd_train_roles(args) -> int:
     from models.language.roles.train import RolesConfig, train
     cfg = RolesConfig(out=args.out, seed=args.seed, epochs=args.epochs, lr=args.lr, batch_size=args.batch_size,
-                      limit=args.limit or None, eval_limit=args.eval_limit or None)
+                      limit=args.limit or None, eval_limit=args.eval_limit or None, lora=args.lora,
+                      lora_lr=args.lora_lr)
     head = train(cfg)
-    print(f"role head: {head}  (log: {Path(args.out) / 'train.csv'}, curves: {Path(args.out) / 'curves.png'})")
-    print(f"ship it: cp {head} models/weights/roles/head.pt")
+    print(f"role model: {head}  (log: {Path(args.out) / 'train.csv'}, curves: {Path(args.out) / 'curves.png'})")
+    print(f"measure it: python -m models.language.roles.evaluate {head}")
     return 0
 
 
@@ -496,7 +497,7 @@ def build_parser() -> argparse.ArgumentParser:
     t.add_argument("--no-global", action="store_true", help="ablation: the global state s_g zeroed")
     t.add_argument("--compare", metavar="DIR", help="another run (e.g. --no-global) for the E_rel figure")
     t.set_defaults(run=cmd_train_placement)
-    t = train.add_parser("roles", help="f_theta2: MiniLM (frozen) + two-layer role head on id_train")
+    t = train.add_parser("roles", help="f_theta2: MiniLM (frozen, or --lora) + two-layer role head on id_train")
     t.add_argument("--out", default="runs/roles", metavar="DIR",
                    help="features/, checkpoint.pt, train.csv, curves.png, head.pt")
     t.add_argument("--seed", type=int, default=0)
@@ -505,6 +506,9 @@ def build_parser() -> argparse.ArgumentParser:
     t.add_argument("--batch-size", type=int, default=256)
     t.add_argument("--limit", type=int, default=1200, help="id_train rows, a seeded sample (0: all 10,786)")
     t.add_argument("--eval-limit", type=int, default=250, help="id_eval rows for the held-out curve (0: all)")
+    t.add_argument("--lora", action="store_true",
+                   help="train LoRA adapters on the encoder with the head (the run folder then loads as the model)")
+    t.add_argument("--lora-lr", type=float, default=5e-4, help="the adapters' learning rate (with --lora)")
     t.set_defaults(run=cmd_train_roles)
 
     p = sub.add_parser("data", help="rebuild the bundled constraint datasets (deterministic)")

@@ -57,3 +57,20 @@ def test_hybrid_takes_naming_from_rules_and_the_anchor_from_the_head(learned):
     roles = hybrid.predict("Put a chilled bread on the counter", ["Bread", "CounterTop", "Fridge"])
     assert roles == [{"key"}, {"key", "anchor"}, {"inference"}]
     assert sum("anchor" in r for r in hybrid.predict("Examine the watch under the lamp", ["Watch", "DeskLamp"])) == 1
+
+
+def test_train_roles_lora_tiny_resumes_as_if_uninterrupted_and_loads(tmp_path: Path, learned):
+    pytest.importorskip("peft")
+    from app.cli import main
+    from models.language.roles.model import LearnedRoles
+    args = ["train", "roles", "--lora", "--limit", "6", "--eval-limit", "4", "--batch-size", "4"]
+    assert main([*args, "--out", str(tmp_path / "a"), "--epochs", "1"]) == 0
+    assert main([*args, "--out", str(tmp_path / "a"), "--epochs", "2"]) == 0  # resumed from the checkpoint
+    assert main([*args, "--out", str(tmp_path / "b"), "--epochs", "2"]) == 0
+    assert (tmp_path / "a" / "train.csv").read_text() == (tmp_path / "b" / "train.csv").read_text()
+    tuned = LearnedRoles(tmp_path / "a")  # the run's folder: the adapter and head.pt
+    assert tuned.encoder is not None and learned.encoder is None
+    pairs = [("Put a chilled bread on the counter", t) for t in ("Bread", "CounterTop")]
+    assert not tuned.features(pairs).equal(learned.features(pairs))  # the adapters changed the encoder
+    roles = tuned.predict("Put a chilled bread on the counter", ["Bread", "CounterTop", "Fridge"])
+    assert sum("anchor" in r for r in roles) == 1 and all(("key" in r) != ("inference" in r) for r in roles)

@@ -1,7 +1,9 @@
 """Role accuracy of the rule baseline, the learned head and the hybrid (rules' key / inference, the
 head's anchor) on every language set and its de-duplicated part, given the labelled objects.
 
-    python -m models.language.roles.evaluate [HEAD.pt] [FEATURE_CACHE_DIR]
+    python -m models.language.roles.evaluate [HEAD.pt | LORA_RUN_DIR] [FEATURE_CACHE_DIR]
+
+The features are cached (default: runs/roles/eval-features for the frozen encoder, LORA_RUN_DIR/eval-features).
 """
 
 from __future__ import annotations
@@ -18,15 +20,18 @@ from models.metrics.language import RoleCounts
 
 SETS = ("id_eval", "valid_unseen", "ts", "os")
 METHODS = ("rules", "minilm", "hybrid")
+FROZEN_CACHE = Path("runs/roles/eval-features")
 
 
-def evaluate(head_path: str | None = None, cache: Path = Path("runs/roles/eval-features")) -> dict:
+def evaluate(weights: str | None = None, cache: Path | None = None) -> dict:
     import torch
-    head, rules, out = LearnedRoles(head_path).head, RuleRoles(), {}
+    learned, rules, out = LearnedRoles(weights), RuleRoles(), {}
+    cache = cache or (Path(weights) / "eval-features" if learned.encoder is not None else FROZEN_CACHE)
     for name in SETS:
         rows = load_language_set(name)
         with torch.no_grad():
-            p = torch.sigmoid(head(cached_features(pairs_of(rows)[0], cache / name))).tolist()
+            x = cached_features(pairs_of(rows)[0], cache / name, compute=learned.features)
+            p = torch.sigmoid(learned.head(x)).tolist()
         dedup = {r.instruction for r in load_language_set(name + "_dedup")}
         for sub in ("", "_dedup"):
             counts, k = {m: RoleCounts() for m in METHODS}, 0
@@ -59,7 +64,6 @@ def table(results: dict) -> str:
 
 
 if __name__ == "__main__":
-    res = evaluate(sys.argv[1] if len(sys.argv) > 1 else None,
-                   Path(sys.argv[2]) if len(sys.argv) > 2 else Path("runs/roles/eval-features"))
+    res = evaluate(sys.argv[1] if len(sys.argv) > 1 else None, Path(sys.argv[2]) if len(sys.argv) > 2 else None)
     print(table(res))
     print(json.dumps(res))

