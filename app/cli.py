@@ -328,7 +328,8 @@ def cmd_train_placement(args) -> int:
     net = NetConfig(hidden=args.hidden, fusion=args.fusion, sff=not args.no_sff, **prior).as_dict()
     cfg = TrainConfig(episodes=args.episodes, batch=args.batch, lr=args.lr, seed=args.seed,
                       use_global=not args.no_global, aux=not args.no_aux, net=net, teacher=args.teacher,
-                      imitate=args.imitate, init=args.init or "", dataset=args.dataset, guard=args.guard)
+                      imitate=args.imitate, init=args.init or "", dataset=args.dataset, guard=args.guard,
+                      repair_reward=args.repair_reward)
     out = Path(args.out)
     ckpt = train(cfg, out)
     runs = {"with global state": out / "train.csv"} | ({"without": Path(args.compare) / "train.csv"}
@@ -487,6 +488,8 @@ def build_parser() -> argparse.ArgumentParser:
                    "its instructions replanned per episode in rooms of random size and density (not in the paper)")
     t.add_argument("--guard", action="store_true", help="sample with the reach guard as an action mask, as the "
                    "solver places (not in the paper)")
+    t.add_argument("--repair-reward", action="store_true", help="the return after the repairs that every solved "
+                   "layout gets (the last step's reward takes their change of the energy; not in the paper)")
     t.add_argument("--prior-temp", type=float, default=None,
                    help="temperature of the actor's immediate-energy prior (default 0.05; 0: none)")
     t.add_argument("--seed", type=int, default=0)

@@ -156,6 +156,24 @@ def test_training_is_seeded_and_resumes(tmp_path):
     assert plot_curves({"x": tmp_path / "a" / "train.csv"}, tmp_path / "c.png").stat().st_size > 1000
 
 
+def test_the_repair_reward_makes_the_return_minus_the_energy_the_bench_judges():
+    from models.energy.exact import layout_energy
+    from models.placement.plan2place.agent import repaired_energy, untrained_network
+    net, changed = untrained_network(), 0
+    for rank in range(0, 40, 4):
+        plan = _plan(rank)
+        ep, trace = rollout(net, plan, np.random.default_rng(rank))
+        placed = ep.energy
+        assert sum(t["reward"] for t in trace) == pytest.approx(-placed, abs=1e-9)
+        after = repaired_energy(ep)
+        trace[-1]["reward"] += placed - after
+        judged = layout_energy(plan, ep.layout("x", 0, 0.0).placements, ep.problem).total
+        assert after == pytest.approx(judged, abs=1e-9)
+        assert sum(t["reward"] for t in trace) == pytest.approx(-judged, abs=1e-9)
+        changed += abs(after - placed) > 1e-6
+    assert changed  # the repairs moved something on some plan: the reward is not the placed layout's
+
+
 def test_training_on_varied_rooms_replans_the_episode_it_resumes_at(tmp_path):
     cfg = TrainConfig(episodes=3, batch=3, checkpoint_every=3, net=NetConfig(hidden=16).as_dict(), dataset="varied")
     train(cfg, tmp_path / "a", progress=False)

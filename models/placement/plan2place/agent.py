@@ -8,7 +8,9 @@ the `teacher` candidates of lowest immediate energy and the sampled one are each
 finished greedily; a candidate's advantage is the judged candidates' mean final energy minus its own. With
 `imitate` > 0 (not in the paper either) the policy loss also takes the cross-entropy towards the judged
 candidate of lowest final energy: the policy is distilled from a one-step look-ahead over greedy
-completions, which it must then replace at a fraction of its cost. The auxiliary loss aligns the critic with
+completions, which it must then replace at a fraction of its cost. With `repair_reward` (not in the paper) the
+repairs run on each finished episode, as the solver's layouts are judged, and the last step's reward takes
+their change of the exact energy: the return is minus the energy after the repairs. The auxiliary loss aligns the critic with
 the semantic score as the paper does; the score (in [0, 1]) is shifted by -1 onto the return's scale
 (0 for a layout the scorer finds human-like, -1 for one it does not).
 """
@@ -55,6 +57,7 @@ class TrainConfig:
     imitate: float = 0.0  # weight of the cross-entropy towards the teacher's best judged candidate
     init: str = ""  # start from these weights (an exported plan2place.npz) instead of random ones
     guard: bool = False  # sample with the reach guard as an action mask, as the solver places (not in the paper)
+    repair_reward: bool = False  # the return after the repairs (models.placement.repair; not in the paper)
 
 
 def semantic_of(ep: Episode) -> tuple[torch.Tensor, float]:
@@ -98,6 +101,17 @@ def rollout(net: Plan2PlaceNet, plan, rng: np.random.Generator, use_global: bool
         if trace:  # a failed step after a decision: its energy change counts for that decision
             trace[-1]["reward"] += reward
     return ep, trace
+
+
+def repaired_energy(ep: Episode) -> float:
+    """Run the repairs on the finished episode `ep` (its layout and energy become the repaired ones) and return the
+    exact energy of the result, as the bench judges a layout."""
+    from models.energy.vectorised import CandidateEnergy
+    from models.placement.repair import repair
+    repair(ep)
+    ep.terms = CandidateEnergy(ep.problem, ep.placed).terms()
+    ep.energy = ep.terms["total"]
+    return ep.energy
 
 
 def fast_policy(net: Plan2PlaceNet) -> Policy:
@@ -238,6 +252,8 @@ def train(cfg: TrainConfig, out_dir: Path, progress: bool = True) -> Path:
             t0 = time.perf_counter()
             plan = plan_of(episode)
             ep, trace = rollout(net, plan, rng, use_global=cfg.use_global, teacher=cfg.teacher, guard=cfg.guard)
+            if cfg.repair_reward and trace:
+                trace[-1]["reward"] += ep.energy - repaired_energy(ep)
             batch.append((ep, trace, plan, t0))
             if len(batch) == cfg.batch or episode == cfg.episodes - 1:
                 parts = [losses(tr, cfg.aux, cfg.imitate) for _, tr, _, _ in batch if tr]

@@ -25,12 +25,12 @@ METRICS = (("energy", 1, False, 3), ("constraint_satisfaction", 100, True, 2), (
 SHIPPED = "plan2place"
 
 
-def fresh_plans(ds: str) -> list:
+def fresh_plans(ds: str, fraction: str = "7/8") -> list:
     import importlib.util
     spec = importlib.util.spec_from_file_location("make_way_run", HERE.parent / "make-way-strips" / "run.py")
     mod = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(mod)
-    return mod.plans(ds, "7/8")
+    return mod.plans(ds, fraction)
 
 
 def solvers(ckpts: list[Path], baselines: bool) -> list:
@@ -45,11 +45,14 @@ def means(rows, ds, name, metric) -> float:
     return float(np.mean([r[metric] for r in rows if r["set"] == ds and r["solver"] == name]))
 
 
-def main(mode: str, ckpts: list[Path]) -> int:
+def main(mode: str, ckpts: list[Path], here: Path = HERE, fraction: str = "7/8") -> int:
+    """Writes `here`/{select,fresh}-rows.json and selection.md / fresh.md; fresh plans at `fraction`; in `fresh`
+    mode the first checkpoint is judged and any others are only reported."""
     placers = solvers(ckpts, baselines=mode == "fresh")
     names = [s.name for s in placers]
-    rows = runs((lambda ds: diagnosis_plans(ds, 16)) if mode == "select" else fresh_plans, placers, METRICS)
-    (HERE / f"{mode}-rows.json").write_text(json.dumps(rows) + "\n")
+    plans = (lambda ds: diagnosis_plans(ds, 16)) if mode == "select" else (lambda ds: fresh_plans(ds, fraction))
+    rows = runs(plans, placers, METRICS)
+    (here / f"{mode}-rows.json").write_text(json.dumps(rows) + "\n")
     lines = [*mean_lines(rows, names, METRICS), "", "Paired against the shipped weights (each minus shipped, 95 % "
              "plan-bootstrap interval; bold: better, italic: worse, clear of 0)", "",
              *paired_lines(rows, [(n, SHIPPED) for n in names[1:]], METRICS)]
@@ -68,7 +71,7 @@ def main(mode: str, ckpts: list[Path]) -> int:
                    for ds in SETS)
         lines += ["", f"decision.md step 2: energy lower on {lower} of {len(SETS)} sets; constraints, Key_NAV and CNT "
                   f"kept: {kept}; ship: {lower >= 4 and kept}"]
-    (HERE / f"{'selection' if mode == 'select' else 'fresh'}.md").write_text("\n".join(lines) + "\n")
+    (here / f"{'selection' if mode == 'select' else 'fresh'}.md").write_text("\n".join(lines) + "\n")
     print("\n".join(lines))
     return 0
 
