@@ -103,7 +103,8 @@ def train(cfg: RolesConfig, progress: bool = True) -> Path:
             from peft import set_peft_model_state_dict
             set_peft_model_state_dict(encoder, state["lora"])
         opt.load_state_dict(state["opt"])
-        torch.set_rng_state(state["rng"])
+        if "rng" in state:  # checkpoints written before it was kept resume without it
+            torch.set_rng_state(state["rng"])
         start = state["epoch"]
     if start == 0:
         with log.open("w", newline="") as f:
