@@ -85,14 +85,15 @@ def runs(plans_of, solvers, metrics=METRICS) -> list[dict]:
 
 
 def mean_lines(rows: list[dict], names: list[str], metrics=METRICS) -> list[str]:
-    """A table of each solver's means per set (scaled) and its median time per object."""
+    """A table of each solver's means per set (scaled; a metric not applicable to a layout, such as realism, is
+    left out of its mean) and its median time per object."""
     lines = ["| set | solver | " + " | ".join(m for m, *_ in metrics) + " | ms p50 |",
              "| --- | --- |" + " ---: |" * (len(metrics) + 1)]
     for ds in SETS:
         for name in names:
             mine = [r for r in rows if r["set"] == ds and r["solver"] == name]
-            lines.append(f"| {ds} | {name} | " + " | ".join(f"{sc * np.mean([r[m] for r in mine]):.{d}f}"
-                                                         for m, sc, _, d in metrics) +
+            means = [sc * np.mean([r[m] for r in mine if r[m] is not None]) for m, sc, *_ in metrics]
+            lines.append(f"| {ds} | {name} | " + " | ".join(f"{v:.{d}f}" for v, (*_, d) in zip(means, metrics)) +
                          f" | {np.median([r['ms'] for r in mine]):.1f} |")
     return lines
 
