@@ -45,14 +45,15 @@ def means(rows, ds, name, metric) -> float:
     return float(np.mean([r[metric] for r in rows if r["set"] == ds and r["solver"] == name]))
 
 
-def main(mode: str, ckpts: list[Path], here: Path = HERE, fraction: str = "7/8") -> int:
-    """Writes `here`/{select,fresh}-rows.json and selection.md / fresh.md; fresh plans at `fraction`; in `fresh`
-    mode the first checkpoint is judged and any others are only reported."""
+def main(mode: str, ckpts: list[Path], here: Path = HERE, fraction: str = "7/8", fresh=None, tag: str = "") -> int:
+    """Writes `here`/{select,fresh}{tag}-rows.json and selection{tag}.md / fresh{tag}.md; the fresh plans are
+    `fresh(set)` (default: make-way-strips' at `fraction`); in `fresh` mode the first checkpoint is judged and any
+    others are only reported."""
     placers = solvers(ckpts, baselines=mode == "fresh")
     names = [s.name for s in placers]
-    plans = (lambda ds: diagnosis_plans(ds, 16)) if mode == "select" else (lambda ds: fresh_plans(ds, fraction))
-    rows = runs(plans, placers, METRICS)
-    (here / f"{mode}-rows.json").write_text(json.dumps(rows) + "\n")
+    fresh = fresh or (lambda ds: fresh_plans(ds, fraction))
+    rows = runs((lambda ds: diagnosis_plans(ds, 16)) if mode == "select" else fresh, placers, METRICS)
+    (here / f"{mode}{tag}-rows.json").write_text(json.dumps(rows) + "\n")
     lines = [*mean_lines(rows, names, METRICS), "", "Paired against the shipped weights (each minus shipped, 95 % "
              "plan-bootstrap interval; bold: better, italic: worse, clear of 0)", "",
              *paired_lines(rows, [(n, SHIPPED) for n in names[1:]], METRICS)]
@@ -71,7 +72,7 @@ def main(mode: str, ckpts: list[Path], here: Path = HERE, fraction: str = "7/8")
                    for ds in SETS)
         lines += ["", f"decision.md step 2: energy lower on {lower} of {len(SETS)} sets; constraints, Key_NAV and CNT "
                   f"kept: {kept}; ship: {lower >= 4 and kept}"]
-    (here / f"{'selection' if mode == 'select' else 'fresh'}.md").write_text("\n".join(lines) + "\n")
+    (here / f"{'selection' if mode == 'select' else 'fresh'}{tag}.md").write_text("\n".join(lines) + "\n")
     print("\n".join(lines))
     return 0
 
