@@ -357,3 +357,16 @@ def test_vectorised_observation_equals_the_loops():
 
 if __name__ == "__main__":
     record_plan2place()
+
+
+def test_train_placement_command_at_tiny_scale_with_the_repair_reward(tmp_path):
+    from app.cli import main
+    args = ["train", "placement", "--out", str(tmp_path), "--episodes", "2", "--batch", "2", "--hidden", "16",
+            "--guard", "--repair-reward"]
+    assert main(args) == 0
+    assert json.loads((tmp_path / "config.json").read_text())["repair_reward"] is True
+    rows = list(csv.DictReader((tmp_path / "train.csv").open()))
+    assert len(rows) == 2 and all(float(r["return"]) == pytest.approx(-float(r["total"]), abs=1e-4) for r in rows)
+    assert (tmp_path / "curves.png").stat().st_size > 1000 and (tmp_path / "plan2place.npz").exists()
+    with pytest.raises(ValueError, match="another configuration"):  # resuming asks for the same options
+        main([*args[:-1], "--episodes", "3"])
