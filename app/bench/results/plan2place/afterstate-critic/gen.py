@@ -16,8 +16,11 @@ import numpy as np
 
 from models.datasets import load_dataset
 from models.placement.greedy import Episode
-from models.placement.plan2place.features import choose_subset, observe
-from models.placement.plan2place.policy import shipped_policy, shipped_weights
+from models.placement.plan2place.features import observe
+from models.placement.plan2place.policy import shipped_weights
+
+sys.path.insert(0, str(Path(__file__).parent.parent / "lookahead-critic"))
+from gen import walk  # noqa: E402  (lookahead-critic/gen.py)
 
 LOWEST = 8
 SEED = 9
@@ -36,24 +39,16 @@ def after_state(ep: Episode, opts, pick: int, use_global: bool):
 
 
 def episode(plan, rng: np.random.Generator) -> list[dict]:
-    policy, use_global = shipped_policy(), shipped_weights().use_global
-    ep, steps = Episode(plan), []
-    while not ep.done:
-        opts, pick = ep.options(), None
-        if len(opts.feasible):
-            subset = choose_subset(opts, rng)
-            logits = policy(observe(ep, opts, subset, use_global))
-            order = np.argsort(-logits, kind="stable")
-            a = int(np.flatnonzero(subset == ep.guarded(opts, subset[order]))[0])
-            judged = sorted({*range(min(LOWEST, len(subset))), a})
-            finals = ep.judge(opts, subset[judged])
-            afters = [after_state(ep, opts, int(subset[j]), use_global) for j in judged]
-            steps.append({"plan": plan.id, "before": ep.energy, "judged": np.array(judged), "finals": finals,
-                          "after": [o for o, _ in afters], "energy_after": np.array([e for _, e in afters]),
-                          "policy": a})
-            pick = int(subset[a])
-        ep.apply(opts, pick)
-    return steps
+    use_global = shipped_weights().use_global
+
+    def record(ep, opts, subset, obs, a, rng):
+        judged = sorted({*range(min(LOWEST, len(subset))), a})
+        afters = [after_state(ep, opts, int(subset[j]), use_global) for j in judged]
+        return {"plan": plan.id, "before": ep.energy, "judged": np.array(judged),
+                "finals": ep.judge(opts, subset[judged]), "after": [o for o, _ in afters],
+                "energy_after": np.array([e for _, e in afters]), "policy": a}
+
+    return walk(plan, rng, record)
 
 
 def main(out: Path, first: int, last: int) -> int:

@@ -23,7 +23,10 @@ LOWEST, RANDOM = 8, 2
 SEED = 5
 
 
-def episode(plan, rng: np.random.Generator) -> list[dict]:
+def walk(plan, rng: np.random.Generator, record) -> list:
+    """The shipped policy's deterministic episode with the reach guard; at each step with a legal pose, what
+    `record(ep, opts, subset, obs, a, rng)` returns (`a`: the pick's index into `subset`), before the pick is placed.
+    (Also afterstate-critic/gen.py's walk.)"""
     policy, use_global = shipped_policy(), shipped_weights().use_global
     ep, steps = Episode(plan), []
     while not ep.done:
@@ -31,20 +34,23 @@ def episode(plan, rng: np.random.Generator) -> list[dict]:
         if len(opts.feasible):
             subset = choose_subset(opts, rng)
             obs = observe(ep, opts, subset, use_global)
-            logits = policy(obs)
-            order = np.argsort(-logits, kind="stable")
-            a = int(order[0])
-            if (guarded := ep.guarded(opts, subset[order])) != subset[a]:
-                a = int(np.flatnonzero(subset == guarded)[0])
-            rest = np.arange(LOWEST, len(subset))
-            extra = rng.choice(rest, size=min(RANDOM, len(rest)), replace=False) if len(rest) else []
-            judged = sorted({*range(min(LOWEST, len(subset))), a, *map(int, extra)})
-            finals = ep.judge(opts, subset[judged])
-            steps.append({"plan": plan.id, "glob": obs.glob, "nodes": obs.nodes, "edges": obs.edges,
-                          "cands": obs.cands, "judged": np.array(judged), "finals": finals, "policy": a})
+            order = np.argsort(-policy(obs), kind="stable")
+            a = int(np.flatnonzero(subset == ep.guarded(opts, subset[order]))[0])
+            steps.append(record(ep, opts, subset, obs, a, rng))
             pick = int(subset[a])
         ep.apply(opts, pick)
     return steps
+
+
+def episode(plan, rng: np.random.Generator) -> list[dict]:
+    def record(ep, opts, subset, obs, a, rng):
+        rest = np.arange(LOWEST, len(subset))
+        extra = rng.choice(rest, size=min(RANDOM, len(rest)), replace=False) if len(rest) else []
+        judged = sorted({*range(min(LOWEST, len(subset))), a, *map(int, extra)})
+        return {"plan": plan.id, "glob": obs.glob, "nodes": obs.nodes, "edges": obs.edges, "cands": obs.cands,
+                "judged": np.array(judged), "finals": ep.judge(opts, subset[judged]), "policy": a}
+
+    return walk(plan, rng, record)
 
 
 def main(out: Path, episodes: int) -> int:
