@@ -79,3 +79,20 @@ def test_varied_training_plans_are_seeded_training_instructions_in_varied_rooms(
     train = {r.instruction for r in load_dataset("seen", "train")}
     assert len(graphs_of("train")) == len(train) and not train & {r.instruction for r in load_dataset("dense")}
     assert not {g.instruction for g in graphs_of("train")} & {g.instruction for g in graphs_of("validation")}
+
+
+def test_fresh_plans_are_seeded_new_rooms_of_held_out_instructions():
+    from models.datasets.fresh import fresh_plans, fresh_records
+    train = {r.instruction for r in load_dataset("seen", "train")}
+    stored = {(r.plan.room.width, r.plan.room.depth, r.plan.constraints) for r in load_dataset("seen")}
+    seen = fresh_records("seen", "test-tag", 6)
+    assert [r.plan.model_dump_json() for r in seen] == [p.model_dump_json() for p in fresh_plans("seen", "test-tag", 6)]
+    assert [r.plan.constraints for r in seen] != [p.constraints for p in fresh_plans("seen", "other-tag", 6)]
+    assert all(r.plan.id.startswith("seen-test-tag-") and r.instruction not in train for r in seen)
+    assert not any((r.plan.room.width, r.plan.room.depth, r.plan.constraints) in stored for r in seen)
+    dense = fresh_records("dense", "test-tag", 4)
+    assert len(dense) == 4 and all(r.plan.id.startswith("dense-test-tag-") and r.instruction not in train for r in dense)
+    assert all(sum(o.size.x * o.size.z for o in r.plan.objects) / (r.plan.room.width * r.plan.room.depth) >= 0.45
+               for r in dense)
+    with pytest.raises(ValueError, match="no fresh plans for 'human'"):
+        fresh_plans("human", "test-tag")
