@@ -3,7 +3,7 @@
 import json
 from types import SimpleNamespace
 
-from app.bench.placement import complete_everywhere, main, pto_medians, table
+from app.bench.placement import complete_everywhere, main, pto_medians, readme_section, replot, table
 
 
 def test_bench_runs_registered_solvers_and_reports_both_tables(tmp_path, capsys):
@@ -61,3 +61,14 @@ def test_pto_medians_come_from_the_stored_runs(tmp_path):
     table = pto_medians(tmp_path)
     assert "| dfs | 2.0 (1.00 x dfs) |" in table and "| plan2place | 4.0 (2.00 x dfs) |" in table
     assert "human" not in table  # the people's arrangement took no time to place
+
+
+def test_readme_section_shows_each_stored_set_with_its_plot_and_plots_remake_from_stored_runs(tmp_path):
+    out = tmp_path / "placement-unseen_b"
+    assert main(SimpleNamespace(dataset="unseen_b", solvers="dfs", n=2, seeds=1, budget=None, out=str(out))) == 0
+    plot = out / "metric_distributions.png"
+    plot.unlink()
+    assert replot(tmp_path) == [out / "time_per_scene.png", plot] and plot.stat().st_size > 1000
+    section = readme_section(tmp_path)
+    assert "**unseen_b**" in section and "| dfs |" in section and "**seen**" not in section
+    assert "(app/bench/results/placement-unseen_b/metric_distributions.png)" in section

@@ -150,16 +150,18 @@ def plots(rows: list[dict], solvers: list[str], out: Path, dataset: str) -> list
         ax.bar(solvers, means, color=[["#888", "#4a7", "#47a", "#c44", "#a7c", "#ca4"][i % 6] for i in range(len(solvers))])
         ax.set_title(f"{dataset}: {label}")
         ax.set_ylabel("mean time per scene (s)")
+        ax.tick_params(axis="x", labelrotation=35)
     fig.tight_layout()
     paths.append(out / "time_per_scene.png")
     fig.savefig(paths[-1], dpi=110)
     plt.close(fig)
 
     keys = [("cnt", "CNT"), ("key_nav", "Key_NAV"), ("constraint_satisfaction", "constraints"), ("nav", "NAV")]
-    fig, axes = plt.subplots(1, len(keys), figsize=(12, 3.2))
+    fig, axes = plt.subplots(1, len(keys), figsize=(12, 3.6))
     for ax, (key, label) in zip(axes, keys):
         ax.boxplot([[r[key] for r in rows if r["solver"] == s and r[key] is not None] or [0] for s in solvers],
                    tick_labels=solvers)
+        ax.tick_params(axis="x", labelrotation=35)
         ax.set_title(label)
     fig.tight_layout()
     paths.append(out / "metric_distributions.png")
@@ -213,6 +215,17 @@ def pto_medians(root: Path) -> str:
     return "\n".join(lines)
 
 
+def replot(root: Path) -> list[Path]:
+    """The plots of every stored set again, from its `results.json` (no run): after a change to `plots`."""
+    paths = []
+    for name, _ in SETS:
+        folder = root / f"placement-{name}"
+        if (folder / "results.json").exists():
+            rows = json.loads((folder / "results.json").read_text())
+            paths += plots(rows, list(dict.fromkeys(r["solver"] for r in rows)), folder, name)
+    return paths
+
+
 def readme_section(root: Path) -> str:
     """The README's placement tables, pasted from the stored `table.md` of each set, and the median PTO from
     the stored raw results (never typed in)."""
@@ -221,6 +234,10 @@ def readme_section(root: Path) -> str:
         path = root / f"placement-{name}" / "table.md"
         if path.exists():
             parts.append(f"**{name}** ({note}):\n\n" + path.read_text().split("\n", 2)[2].strip())
+            plot = path.parent / "metric_distributions.png"
+            if plot.exists():
+                parts.append(f"![{name}: CNT, Key_NAV, constraints met and NAV per run, by solver]"
+                             f"(app/bench/results/{plot.parent.name}/{plot.name})")
     parts.append("**PTO p50** (ms per object, median over the plan-seed runs of each set, with the runs "
                  "sharing two workers):\n\n" + pto_medians(root))
     return "\n\n".join(parts)
