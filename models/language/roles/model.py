@@ -38,14 +38,20 @@ def _minilm_path() -> str:
 
 
 @cache
+def tokenizer():
+    """all-MiniLM-L6-v2's tokenizer, shared by the frozen and the LoRA encoders."""
+    from transformers import AutoTokenizer
+    return AutoTokenizer.from_pretrained(_minilm_path(), local_files_only=True)
+
+
+@cache
 def encoder():
     """(tokenizer, model) of all-MiniLM-L6-v2 from site-packages, frozen; never touches a model hub."""
-    from transformers import AutoModel, AutoTokenizer
-    path = _minilm_path()
-    model = AutoModel.from_pretrained(path, local_files_only=True).eval()
+    from transformers import AutoModel
+    model = AutoModel.from_pretrained(_minilm_path(), local_files_only=True).eval()
     for p in model.parameters():
         p.requires_grad_(False)
-    return AutoTokenizer.from_pretrained(path, local_files_only=True), model
+    return tokenizer(), model
 
 
 def lora_encoder(adapter: str | Path | None = None):
@@ -63,8 +69,7 @@ def pooled(model, pairs: list[tuple[str, str]]):
     """(n, 768): mean over all tokens and over the object's tokens of `model`'s last layer (gradients flow if
     the caller allows them)."""
     import torch
-    tok = encoder()[0]
-    enc = tok([p[0] for p in pairs], [object_words(p[1]) for p in pairs], truncation="only_first",
+    enc = tokenizer()([p[0] for p in pairs], [object_words(p[1]) for p in pairs], truncation="only_first",
               max_length=MAX_TOKENS, padding=True, return_tensors="pt")
     hidden = model(**enc).last_hidden_state
     mask = enc["attention_mask"].unsqueeze(-1).float()

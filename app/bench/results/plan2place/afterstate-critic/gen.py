@@ -19,8 +19,18 @@ from models.placement.greedy import Episode
 from models.placement.plan2place.features import observe
 from models.placement.plan2place.policy import shipped_weights
 
-sys.path.insert(0, str(Path(__file__).parent.parent / "lookahead-critic"))
-from gen import walk  # noqa: E402  (lookahead-critic/gen.py)
+
+def _lookahead_gen():
+    """lookahead-critic/gen.py, loaded under a name of its own (this file is gen.py too)."""
+    import importlib.util
+    path = Path(__file__).parent.parent / "lookahead-critic" / "gen.py"
+    spec = importlib.util.spec_from_file_location("lookahead_gen", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+walk = _lookahead_gen().walk
 
 LOWEST = 8
 SEED = 9

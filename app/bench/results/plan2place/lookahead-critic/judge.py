@@ -25,7 +25,7 @@ METRICS = (("energy", 1, False, 3), ("constraint_satisfaction", 100, True, 2), (
 SHIPPED = "plan2place"
 
 
-def fresh_plans(ds: str, fraction: str = "7/8") -> list:
+def offset_plans(ds: str, fraction: str = "7/8") -> list:
     import importlib.util
     spec = importlib.util.spec_from_file_location("make_way_run", HERE.parent / "make-way-strips" / "run.py")
     mod = importlib.util.module_from_spec(spec)
@@ -45,13 +45,12 @@ def means(rows, ds, name, metric) -> float:
     return float(np.mean([r[metric] for r in rows if r["set"] == ds and r["solver"] == name]))
 
 
-def main(mode: str, ckpts: list[Path], here: Path = HERE, fraction: str = "7/8", fresh=None, tag: str = "") -> int:
+def main(mode: str, ckpts: list[Path], here: Path = HERE, fresh=offset_plans, tag: str = "") -> int:
     """Writes `here`/{select,fresh}{tag}-rows.json and selection{tag}.md / fresh{tag}.md; the fresh plans are
-    `fresh(set)` (default: make-way-strips' at `fraction`); in `fresh` mode the first checkpoint is judged and any
-    others are only reported."""
+    `fresh(set)` (default: make-way-strips' at 7/8); in `fresh` mode the first checkpoint is judged and any others
+    are only reported."""
     placers = solvers(ckpts, baselines=mode == "fresh")
     names = [s.name for s in placers]
-    fresh = fresh or (lambda ds: fresh_plans(ds, fraction))
     rows = runs((lambda ds: diagnosis_plans(ds, 16)) if mode == "select" else fresh, placers, METRICS)
     (here / f"{mode}{tag}-rows.json").write_text(json.dumps(rows) + "\n")
     lines = [*mean_lines(rows, names, METRICS), "", "Paired against the shipped weights (each minus shipped, 95 % "

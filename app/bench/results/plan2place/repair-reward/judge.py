@@ -10,7 +10,7 @@ from pathlib import Path
 
 HERE = Path(__file__).parent
 sys.path.insert(0, str(HERE.parent / "lookahead-critic"))
-from judge import main  # noqa: E402  (lookahead-critic/judge.py)
+from judge import main, offset_plans  # noqa: E402  (lookahead-critic/judge.py)
 
 if __name__ == "__main__":
-    sys.exit(main(sys.argv[1], [Path(p) for p in sys.argv[2:]], here=HERE, fraction="1/8"))
+    sys.exit(main(sys.argv[1], [Path(p) for p in sys.argv[2:]], here=HERE, fresh=lambda ds: offset_plans(ds, "1/8")))
