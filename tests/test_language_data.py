@@ -105,3 +105,20 @@ def test_rephrase_is_seeded():
 def test_unknown_set_is_a_clear_error():
     with pytest.raises(KeyError, match="known: id_train"):
         ls.load_language_set("nope")
+
+
+def test_label_review_reads_every_evaluation_row_once_or_twice():
+    verdicts = ls.review_verdicts()
+    sources = {r.source for n in ("id_eval", "valid_unseen") for r in ls.load_language_set(n)}
+    assert set(verdicts) == sources
+    assert {len(v) for v in verdicts.values()} == {1, 2}
+    assert sum(len(v) == 2 for v in verdicts.values()) == 48  # 6 rows of each of 8 batches read again
+    assert all(set(v) <= set(ls.REVIEW_VERDICTS) for v in verdicts.values())
+    assert 0 < sum(v != ("ok",) for v in verdicts.values()) < len(verdicts) / 2
+
+
+def test_label_review_names_an_unknown_verdict():
+    good = '{"source": "valid_seen:1", "verdict": "ok", "note": "", "reader": 0}\n'
+    assert ls.parse_review(good + good.replace('"reader": 0', '"reader": 1')) == {"valid_seen:1": ("ok", "ok")}
+    with pytest.raises(ValueError, match="'maybe' for valid_seen:2"):
+        ls.parse_review(good + '{"source": "valid_seen:2", "verdict": "maybe", "note": "", "reader": 0}\n')

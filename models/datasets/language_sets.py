@@ -326,6 +326,29 @@ def load_language_set(name: str) -> tuple[LabelledInstruction, ...]:
     return rows
 
 
+REVIEW_VERDICTS = ("ok", "S", "U", "D")  # label_review_eval.jsonl: agrees / source mismatch / under-specified / derivation
+
+
+@cache
+def review_verdicts() -> dict[str, tuple[str, ...]]:
+    """The blind review of every `id_eval` and `valid_unseen` label (models/data/language/label_review_eval.jsonl,
+    procedure in app/bench/results/label-review/): each row's source -> the verdicts its readers gave (two for
+    the rows read twice); "ok" = the label agrees with what the sentence says."""
+    return parse_review(resources.files("models").joinpath(f"{DATA_DIR}/label_review_eval.jsonl").read_text())
+
+
+def parse_review(text: str) -> dict[str, tuple[str, ...]]:
+    """`review_verdicts` of a review's JSON lines; an unknown verdict raises ValueError naming the row."""
+    out: dict[str, tuple[str, ...]] = {}
+    for line in filter(None, text.splitlines()):
+        rec = json.loads(line)
+        if rec["verdict"] not in REVIEW_VERDICTS:
+            raise ValueError(f"label review: unknown verdict {rec['verdict']!r} for {rec['source']} "
+                             f"(known: {', '.join(REVIEW_VERDICTS)})")
+        out[rec["source"]] = (*out.get(rec["source"], ()), rec["verdict"])
+    return out
+
+
 if __name__ == "__main__":
     target = Path(__file__).resolve().parents[1] / DATA_DIR
     for set_name, n in write_sets(target).items():
