@@ -93,7 +93,8 @@ def main() -> None:
                          f"{roles(everything[p])} | {roles(good[p])} |")
         ceiling = score_graphs([r.label if clean[r.source] else graphs["combined"][r.instruction, r.room_type]
                                 for r in rows], list(rows))
-        ceilings.append(f"| {name} | {triple(everything['combined'])} | {triple(ceiling)} | "
+        disagree = score_parsers([r for r in rows if not clean[r.source]], graphs, seconds)["combined"]
+        ceilings.append(f"| {name} | {triple(everything['combined'])} | {triple(disagree)} | {triple(ceiling)} | "
                         f"{'yes' if meets(ceiling) else 'no'} | {roles(ceiling)} |")
         met = meets(good["combined"])
         verdict_lines.append(f"- {name}: the default on the rows whose label agrees "
@@ -102,8 +103,8 @@ def main() -> None:
     lines += ["", "What the noise leaves at most (read after the decision rule, not part of it): a parser perfect on "
               "every row whose label agrees, reading the other rows as the default does (the sentence, not the "
               "pddl params), object F1 / iRecall / GED over all rows", "",
-              "| set | default | perfect where the label agrees | meets the three targets | its roles end to end |",
-              "| --- | --- | --- | --- | --- |",
+              "| set | default | default where the label disagrees | perfect where the label agrees | "
+              "meets the three targets | its roles end to end |", "| --- | --- | --- | --- | --- | --- |",
               *ceilings]
     lines += ["", "Decision rule (decision.md): where the default meets the three graph targets on the rows whose "
               "label agrees, that set's gap is label noise; elsewhere the rest of the gap is the parser's.",
