@@ -109,10 +109,10 @@ def test_unknown_set_is_a_clear_error():
 
 def test_label_review_reads_every_evaluation_row_once_or_twice():
     verdicts = ls.review_verdicts()
-    sources = {r.source for n in ("id_eval", "valid_unseen") for r in ls.load_language_set(n)}
-    assert set(verdicts) == sources
+    keys = {ls.review_key(n, r) for n in ("id_eval", "valid_unseen", "ts", "os") for r in ls.load_language_set(n)}
+    assert set(verdicts) == keys
     assert {len(v) for v in verdicts.values()} == {1, 2}
-    assert sum(len(v) == 2 for v in verdicts.values()) == 48  # 6 rows of each of 8 batches read again
+    assert sum(len(v) == 2 for v in verdicts.values()) == 48 + 36  # 6 rows of each batch read again: 8 + 6 batches
     assert all(set(v) <= set(ls.REVIEW_VERDICTS) for v in verdicts.values())
     assert 0 < sum(v != ("ok",) for v in verdicts.values()) < len(verdicts) / 2
 

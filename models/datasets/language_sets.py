@@ -331,10 +331,17 @@ REVIEW_VERDICTS = ("ok", "S", "U", "D")  # label_review_eval.jsonl: agrees / sou
 
 @cache
 def review_verdicts() -> dict[str, tuple[str, ...]]:
-    """The blind review of every `id_eval` and `valid_unseen` label (models/data/language/label_review_eval.jsonl,
-    procedure in app/bench/results/label-review/): each row's source -> the verdicts its readers gave (two for
-    the rows read twice); "ok" = the label agrees with what the sentence says."""
+    """The blind review of every evaluation label (models/data/language/label_review_eval.jsonl, procedure in
+    app/bench/results/label-review/): each row's `review_key` -> the verdicts its readers gave (two for the rows
+    read twice); "ok" = the label agrees with what the sentence says."""
     return parse_review(resources.files("models").joinpath(f"{DATA_DIR}/label_review_eval.jsonl").read_text())
+
+
+def review_key(set_name: str, row: LabelledInstruction) -> str:
+    """A row's key in `review_verdicts`: its source, prefixed with its set for `ts` and `os`, whose rows
+    rewrite id_eval rows and keep their sources."""
+    base = set_name.removesuffix("_dedup")
+    return row.source if base in ("id_eval", "valid_unseen") else f"{base}:{row.source}"
 
 
 def parse_review(text: str) -> dict[str, tuple[str, ...]]:

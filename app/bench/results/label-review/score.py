@@ -13,14 +13,14 @@ from collections import Counter
 from pathlib import Path
 
 from app.bench.language import (lora_readings, read_all, readings_cache, reviewed_rows, score_parsers)
-from models.datasets.language_sets import load_language_set, review_verdicts
+from models.datasets.language_sets import load_language_set, review_key, review_verdicts
 from models.language import RuleParser
 from models.language.combined import DEFAULT_POLICY, CombinedParser
 from models.language.llm.parser import LoraParser
 from models.metrics.language import score_graphs
 
 HERE = Path(__file__).parent
-SETS = ("id_eval", "id_eval_dedup", "valid_unseen", "valid_unseen_dedup", "ts")
+SETS = ("id_eval", "id_eval_dedup", "valid_unseen", "valid_unseen_dedup", "ts", "os")
 PARSERS = ("rules", "lora", "combined")
 TARGETS = {"object_f1": 0.95, "irecall": 0.90}  # and GED <= GED_TARGET
 GED_TARGET = 1.0
@@ -62,6 +62,7 @@ def main() -> None:
     agree_earlier, k_earlier = kappa(earlier)
 
     sets = {n: load_language_set(n) for n in SETS}
+    agrees = {n: [clean[review_key(n, r)] for r in rows] for n, rows in sets.items()}
     every = [r for rows in sets.values() for r in rows]
     lm, rules = LoraParser(), RuleParser()
     readings = lora_readings(every, lm, readings_cache(lm.adapter), progress=False)
@@ -69,31 +70,35 @@ def main() -> None:
                                                                                   policy=DEFAULT_POLICY)})
 
     kinds = Counter(v for vs in verdicts.values() for v in vs if v != "ok")
-    lines = [f"Blind review of the labels of id_eval and valid_unseen ({len(verdicts)} rows; decision.md, GUIDE.md).",
+    ts_vs_source = [(clean[review_key("ts", r)], clean[r.source]) for r in sets["ts"]]
+    lines = [f"Blind review of the labels of every evaluation set ({len(verdicts)} rows; decision.md, GUIDE.md).",
              f"Readers' agreement on the {len(twice)} rows read twice (ok vs not ok): {100 * agree:.1f} %, "
              f"Cohen's kappa {k:.2f}. Against the earlier 100-row review on the {len(earlier)} rows both read: "
              f"{100 * agree_earlier:.1f} %, kappa {k_earlier:.2f}.",
+             f"A TS row's verdict against its id_eval source row's (ok vs not ok): {100 * kappa(ts_vs_source)[0]:.1f} % "
+             f"agree; TS rows ok whose source is not: {sum(a and not b for a, b in ts_vs_source)}, the reverse: "
+             f"{sum(b and not a for a, b in ts_vs_source)}.",
              "Verdicts other than ok, over all readings: " + ", ".join(f"{v} {n}" for v, n in sorted(kinds.items())),
              "", "| set | rows | label agrees | noise, 95 % interval |", "| --- | ---: | ---: | --- |"]
     for name, rows in sets.items():
-        n, ok = len(rows), sum(clean[r.source] for r in rows)
+        n, ok = len(rows), sum(agrees[name])
         lo, hi = wilson(n - ok, n)
         lines.append(f"| {name} | {n} | {ok} | {100 * (n - ok) / n:.1f} % [{100 * lo:.1f}, {100 * hi:.1f}] |")
     lines += ["", "object F1 / iRecall / GED (x 100 but GED) over all rows and over the rows whose label agrees; "
-              "roles end to end: key / anchor / inference accuracy in % (`ts` takes its id_eval source row's verdict)",
+              "roles end to end: key / anchor / inference accuracy in %",
               "", "| set | parser | all rows | label agrees | roles, all | roles, label agrees |",
               "| --- | --- | --- | --- | --- | --- |"]
     verdict_lines, ceilings = [], []
     for name, rows in sets.items():
-        agreed = [r for r in rows if clean[r.source]]
+        agreed = [r for r, ok in zip(rows, agrees[name]) if ok]
         everything, good = score_parsers(rows, graphs, seconds), score_parsers(agreed, graphs, seconds)
         for p in PARSERS:
             bold = "**" if p == "combined" else ""
             lines.append(f"| {name} | {bold}{p}{bold} | {triple(everything[p])} | {triple(good[p])} | "
                          f"{roles(everything[p])} | {roles(good[p])} |")
-        ceiling = score_graphs([r.label if clean[r.source] else graphs["combined"][r.instruction, r.room_type]
-                                for r in rows], list(rows))
-        disagree = score_parsers([r for r in rows if not clean[r.source]], graphs, seconds)["combined"]
+        ceiling = score_graphs([r.label if ok else graphs["combined"][r.instruction, r.room_type]
+                                for r, ok in zip(rows, agrees[name])], list(rows))
+        disagree = score_parsers([r for r, ok in zip(rows, agrees[name]) if not ok], graphs, seconds)["combined"]
         ceilings.append(f"| {name} | {triple(everything['combined'])} | {triple(disagree)} | {triple(ceiling)} | "
                         f"{'yes' if meets(ceiling) else 'no'} | {roles(ceiling)} |")
         met = meets(good["combined"])
@@ -111,19 +116,19 @@ def main() -> None:
               *verdict_lines]
     (HERE / "score.md").write_text("\n".join(lines) + "\n")
     print("\n".join(lines))
-    _misses(sets, clean, graphs)
+    _misses(sets, agrees, graphs)
 
 
-def _misses(sets: dict, clean: dict, graphs: dict) -> None:
-    """The default's wrong graphs on the rows whose label agrees (id_eval and valid_unseen): what is the parser's."""
-    out = ["The default's graphs that differ from an agreed label (objects or relations), id_eval and valid_unseen",
-           "", "| source | instruction | label | default |", "| --- | --- | --- | --- |"]
-    for name in ("id_eval", "valid_unseen"):
-        for r in sets[name]:
+def _misses(sets: dict, agrees: dict, graphs: dict) -> None:
+    """The default's wrong graphs on the rows whose label agrees: what is the parser's."""
+    out = ["The default's graphs that differ from an agreed label (objects or relations), per full set",
+           "", "| set | source | instruction | label | default |", "| --- | --- | --- | --- | --- |"]
+    for name in ("id_eval", "valid_unseen", "ts", "os"):
+        for r, ok in zip(sets[name], agrees[name]):
             g = graphs["combined"][r.instruction, r.room_type]
-            if not clean[r.source] or (g is not None and _same(g, r.label)):
+            if not ok or (g is not None and _same(g, r.label)):
                 continue
-            out.append(f"| {r.source} | {' '.join(r.instruction.split())} | {_show(r.label)} | {_show(g)} |")
+            out.append(f"| {name} | {r.source} | {' '.join(r.instruction.split())} | {_show(r.label)} | {_show(g)} |")
     (HERE / "misses.md").write_text("\n".join(out) + "\n")
 
 
