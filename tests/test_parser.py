@@ -46,6 +46,17 @@ def test_destination_landmarks_lamps_slicing_and_misspellings(parser, text, targ
     assert (g.relations[0][0], g.relations[-1][2], g.sliced) == (target, destination, sliced)
 
 
+@pytest.mark.parametrize("text,destination,roles", [
+    ("Put the plunger under the sink.", "Cabinet", ["anchor", "inference"]),  # the cabinet below it
+    ("Place the soap bottle underneath the bathroom sink", "Cabinet", ["anchor", "inference"]),
+    ("Put the spray bottle in the cabinet under the sink", "Cabinet", ["key", "anchor"]),  # named: as before
+    ("Put the sponge in the sink", "SinkBasin", ["key", "anchor"]),
+])
+def test_under_the_sink_is_the_cabinet(parser, text, destination, roles):
+    g = parser.parse(text, "bathroom")
+    assert g.relations[-1][2] == destination and {o.type: o.roles for o in g.objects}[destination] == roles
+
+
 def test_the_processing_appliance_is_never_the_final_receptacle(parser):
     g = parser.parse("Heat a white mug in a microwave", "kitchen")
     assert g.relations[-1][2] != "Microwave" and ("Mug", "heated_in", "Microwave") in g.relations
