@@ -27,6 +27,7 @@ GED_TARGET = 1.0
 
 
 def wilson(k: int, n: int, z: float = 1.96) -> tuple[float, float]:
+    """The 95 % Wilson score interval of the share k / n."""
     p, d = k / n, 1 + z * z / n
     half = z * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n)) / d
     return (p + z * z / (2 * n)) / d - half, (p + z * z / (2 * n)) / d + half
