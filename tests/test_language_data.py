@@ -122,3 +122,12 @@ def test_label_review_names_an_unknown_verdict():
     assert ls.parse_review(good + good.replace('"reader": 0', '"reader": 1')) == {"valid_seen:1": ("ok", "ok")}
     with pytest.raises(ValueError, match="'maybe' for valid_seen:2"):
         ls.parse_review(good + '{"source": "valid_seen:2", "verdict": "maybe", "note": "", "reader": 0}\n')
+
+
+def test_label_agrees_needs_every_reader_s_ok():
+    rows = {r.source: r for r in ls.load_language_set("id_eval")}
+    assert not ls.label_agrees("id_eval", rows["valid_seen:467"])  # "a heated cup", labelled Mug: S
+    assert ls.label_agrees("id_eval", rows["valid_seen:110"])  # "the spray bottle in the garbage bin"
+    assert ls.label_agrees("id_eval_dedup", rows["valid_seen:110"])
+    assert set(ls.review_verdicts()["valid_seen:295"]) == {"ok", "S"}  # read twice, the readers disagreed
+    assert not ls.label_agrees("id_eval", rows["valid_seen:295"])

@@ -344,6 +344,11 @@ def review_key(set_name: str, row: LabelledInstruction) -> str:
     return row.source if base in ("id_eval", "valid_unseen") else f"{base}:{row.source}"
 
 
+def label_agrees(set_name: str, row: LabelledInstruction) -> bool:
+    """Did every reader of the blind review find that `row`'s label agrees with its sentence?"""
+    return all(v == "ok" for v in review_verdicts()[review_key(set_name, row)])
+
+
 def parse_review(text: str) -> dict[str, tuple[str, ...]]:
     """`review_verdicts` of a review's JSON lines; an unknown verdict raises ValueError naming the row."""
     out: dict[str, tuple[str, ...]] = {}

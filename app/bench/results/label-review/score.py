@@ -13,7 +13,7 @@ from collections import Counter
 from pathlib import Path
 
 from app.bench.language import (lora_readings, read_all, readings_cache, reviewed_rows, score_parsers)
-from models.datasets.language_sets import load_language_set, review_key, review_verdicts
+from models.datasets.language_sets import label_agrees, load_language_set, review_key, review_verdicts
 from models.language import RuleParser
 from models.language.combined import DEFAULT_POLICY, CombinedParser
 from models.language.llm.parser import LoraParser
@@ -63,7 +63,7 @@ def main() -> None:
     agree_earlier, k_earlier = kappa(earlier)
 
     sets = {n: load_language_set(n) for n in SETS}
-    agrees = {n: [clean[review_key(n, r)] for r in rows] for n, rows in sets.items()}
+    agrees = {n: [label_agrees(n, r) for r in rows] for n, rows in sets.items()}
     every = [r for rows in sets.values() for r in rows]
     lm, rules = LoraParser(), RuleParser()
     readings = lora_readings(every, lm, readings_cache(lm.adapter), progress=False)
