@@ -60,6 +60,25 @@ def test_untrained_model_still_writes_only_catalogue_types(tiny):
         assert parse_fields(tok.decode(grammar.target_ids(f), skip_special_tokens=True)) == f
 
 
+def test_decoding_passes_the_cache_under_the_name_this_transformers_uses(tiny):
+    """transformers 5.x renamed the forward's `past_key_values` to `cache` (the old name goes in 5.40): the
+    decoding uses whichever the model's forward takes, and reuses it (a few passes, no deprecation warning)."""
+    import warnings
+
+    from models.language.llm.base_model import load_base
+    from models.language.llm.decoding import Grammar, cache_keyword, constrained_decode, prompt_text
+    model, tok = load_base(str(tiny))
+
+    class Old:
+        def forward(self, input_ids=None, past_key_values=None, use_cache=None): ...
+
+    assert cache_keyword(Old) == "past_key_values"
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", FutureWarning)
+        decoded = constrained_decode(model, Grammar(tok), tok(prompt_text("Put a mug on the table", None)).input_ids)
+    assert decoded.forward_passes <= 12
+
+
 def _train(tiny, out, steps, seed=0):
     from models.language.llm.data import training_examples
     from models.language.llm.train import TrainConfig, train

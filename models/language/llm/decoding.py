@@ -9,8 +9,10 @@ costs one forward pass). The output is therefore always a valid graph over catal
 
 from __future__ import annotations
 
+import inspect
 import math
 from dataclasses import dataclass, field
+from functools import cache
 
 from models.language.llm.graph_text import (SLICE_WORDS, TASK_WORDS, GraphFields, destination_types,
                                             target_types)
@@ -76,12 +78,19 @@ class Decoded:
         return math.exp(sum(self.logprob))
 
 
+@cache
+def cache_keyword(model_class: type) -> str:
+    """What the model's forward calls its key-value cache, in and out: `cache` since transformers 5.x
+    (`past_key_values` is deprecated there, to be removed in 5.40), `past_key_values` before."""
+    return "cache" if "cache" in inspect.signature(model_class.forward).parameters else "past_key_values"
+
+
 def constrained_decode(model, grammar: Grammar, prompt_ids: list[int]) -> Decoded:
     """Greedy decoding of the four fields, each restricted to its trie."""
     import torch
 
     past, pending, passes = None, list(prompt_ids), 0
-    logits = None
+    logits, keyword = None, cache_keyword(type(model))
     values, logps = [], []
     with torch.inference_mode():
         for index in range(4):
@@ -94,9 +103,9 @@ def constrained_decode(model, grammar: Grammar, prompt_ids: list[int]) -> Decode
                     # a forced token carries no choice, but its probability still counts for confidence
                     pending.append(token)
                     continue
-                out = model(input_ids=torch.tensor([pending]), past_key_values=past, use_cache=True)
+                out = model(input_ids=torch.tensor([pending]), use_cache=True, **{keyword: past})
                 passes += 1
-                past, logits = out.past_key_values, out.logits[0, -1]
+                past, logits = getattr(out, keyword), out.logits[0, -1]
                 logsm = torch.log_softmax(logits.float(), dim=-1)
                 allowed = torch.tensor(list(node.children))
                 token = int(allowed[int(torch.argmax(logsm[allowed]))])

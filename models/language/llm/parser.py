@@ -12,6 +12,7 @@ from __future__ import annotations
 import json
 import threading
 import time
+import warnings
 from importlib import resources
 from pathlib import Path
 
@@ -89,6 +90,8 @@ def load_adapter(adapter: Path, base: str | None = None, threads: int | None = N
     meta = json.loads((adapter / META_FILE).read_text()) if (adapter / META_FILE).exists() else {}
     model, tok = load_base(base or meta.get("config", {}).get("base", SMOLLM2))
     from peft import PeftModel  # imported only when a model is loaded
-    model = PeftModel.from_pretrained(model, str(adapter)).merge_and_unload()
+    with warnings.catch_warnings():  # peft asks transformers 5.x a deprecated question; nothing for a user to do
+        warnings.filterwarnings("ignore", message=".*is_gradient_checkpointing.*", category=FutureWarning)
+        model = PeftModel.from_pretrained(model, str(adapter)).merge_and_unload()
     model.eval()
     return model, Grammar(tok)
