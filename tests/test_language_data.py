@@ -109,7 +109,7 @@ def test_unknown_set_is_a_clear_error():
 
 def test_label_review_reads_every_evaluation_row_once_or_twice():
     verdicts = ls.review_verdicts()
-    keys = {ls.review_key(n, r) for n in ("id_eval", "valid_unseen", "ts", "os") for r in ls.load_language_set(n)}
+    keys = {ls.review_key(n, r) for n in ls.REVIEWED_SETS for r in ls.load_language_set(n)}
     assert set(verdicts) == keys
     assert {len(v) for v in verdicts.values()} == {1, 2}
     assert sum(len(v) == 2 for v in verdicts.values()) == 48 + 36  # 6 rows of each batch read again: 8 + 6 batches
@@ -131,3 +131,5 @@ def test_label_agrees_needs_every_reader_s_ok():
     assert ls.label_agrees("id_eval_dedup", rows["valid_seen:110"])
     assert set(ls.review_verdicts()["valid_seen:295"]) == {"ok", "S"}  # read twice, the readers disagreed
     assert not ls.label_agrees("id_eval", rows["valid_seen:295"])
+    with pytest.raises(KeyError, match="did not read 'id_train'"):
+        ls.label_agrees("id_train", rows["valid_seen:110"])

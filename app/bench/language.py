@@ -357,7 +357,7 @@ def set_table(scored: dict, names, columns: list[str], ged_digits: int = 2) -> l
 
 
 def main(args) -> int:
-    from models.datasets.language_sets import label_agrees, load_language_set
+    from models.datasets.language_sets import REVIEWED_SETS, label_agrees, load_language_set
     from models.language.combined import DEFAULT_POLICY, FIELDWISE, POLICIES, STRICT, CombinedParser
     from models.language.llm.parser import LoraParser
     from models.language.room_type import K
@@ -408,10 +408,10 @@ def main(args) -> int:
     strict, fieldwise = (next(n for n, parser in combined.items() if parser.policy == p) for p in (STRICT, FIELDWISE))
     decided = {**decisions(scored, rooms, strict), "fieldwise_default": fieldwise_decision(scored, fieldwise, strict)}
     columns = ["rules", "lora", *combined]
-    agreeing = {k: [r for r in sets[k] if label_agrees(k, r)] for k in names}
-    scored_agreeing = {k: score_parsers(rows, graphs, seconds) for k, rows in agreeing.items()}
+    reviewed = [k for k in names if k.removesuffix("_dedup") in REVIEWED_SETS]
+    scored_agreeing = {k: score_parsers([r for r in sets[k] if label_agrees(k, r)], graphs, seconds) for k in reviewed}
     lines += ["", "the rows whose label agrees with the sentence, by the blind review of every evaluation row "
-              "(results/label-review/; object F1 / iRecall / GED)", "", *set_table(scored_agreeing, names, columns)]
+              "(results/label-review/; object F1 / iRecall / GED)", "", *set_table(scored_agreeing, reviewed, columns)]
     lines += ["", f"confirmation sets ({CONFIRM_ROWS} id_train rows kept apart, as they are / TS / OS rewritten with "
               f"seed {CONFIRM_SEED}; object F1 / iRecall / GED)", "", *set_table(scored, CONFIRMATION, columns)]
     lines += ["", f"fresh confirmation sets ({FRESH_ROWS} id_train rows drawn with seed {FRESH_SEED} apart from every "

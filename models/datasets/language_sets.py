@@ -327,6 +327,7 @@ def load_language_set(name: str) -> tuple[LabelledInstruction, ...]:
 
 
 REVIEW_VERDICTS = ("ok", "S", "U", "D")  # label_review_eval.jsonl: agrees / source mismatch / under-specified / derivation
+REVIEWED_SETS = ("id_eval", "valid_unseen", "ts", "os")  # every row read (each also with _dedup)
 
 
 @cache
@@ -341,7 +342,9 @@ def review_key(set_name: str, row: LabelledInstruction) -> str:
     """A row's key in `review_verdicts`: its source, prefixed with its set for `ts` and `os`, whose rows
     rewrite id_eval rows and keep their sources."""
     base = set_name.removesuffix("_dedup")
-    return row.source if base in ("id_eval", "valid_unseen") else f"{base}:{row.source}"
+    if base not in REVIEWED_SETS:
+        raise KeyError(f"the label review did not read {set_name!r}; it read {', '.join(REVIEWED_SETS)}")
+    return row.source if base in REVIEWED_SETS[:2] else f"{base}:{row.source}"
 
 
 def label_agrees(set_name: str, row: LabelledInstruction) -> bool:
