@@ -136,3 +136,55 @@ def test_the_repairs_moves_carry_an_energy_setup_equal_to_a_fresh_one():
                 np.testing.assert_allclose(got[k], v, atol=1e-9, err_msg=k)
             checked += 1
     assert checked >= 10
+
+
+def test_the_energies_a_step_remembers_are_those_its_pose_is_given_afresh():
+    """`CandidateEnergy.remember` keeps, for the pose a step picks, the relational energies `score` computed for
+    every candidate; they must equal, to the bit, what `_own` and `_pair` compute for that one pose."""
+    from models.constraints.evaluate import Poses
+    recs = load_dataset("seen", "validation")
+    rng, checked = np.random.default_rng(1), 0
+    for plan in [recs[3].plan, recs[200].plan, recs[555].plan]:
+        ep = Episode(plan)
+        while not ep.done:
+            opts = ep.options()
+            pick = int(rng.integers(len(opts.feasible))) if len(opts.feasible) else None
+            if pick is not None:
+                kept = CandidateEnergy(ep.problem, ep.placed, pending=ep.pending())
+                kept.remember(opts.shared, pick)
+                cold = CandidateEnergy(ep.problem, ep.placed, pending=ep.pending())
+                for key, value in kept._pairs.items():
+                    size = {o.id: (o.size.x, o.size.z) for o in plan.objects}
+                    if len(key) == 5:  # (placement, id, x, z, rotation)
+                        name, oid, x, z, r = key
+                        fresh = cold._own(oid, name, Poses.one(x, z, r, *size[oid]))
+                    else:  # (relation, a, b, a's x, z, rotation, b's)
+                        name, a, b, *pa = key
+                        fresh = cold._pair(name, a, b, Poses.one(*pa[:3], *size[a]), Poses.one(*pa[3:], *size[b]))
+                    assert fresh == value, key
+                    checked += 1
+            ep.apply(opts, pick)
+    assert checked >= 20
+
+
+def test_the_floor_never_exceeds_the_energy_of_a_layout_that_completes_it():
+    """`CandidateEnergy.floor`: with some objects taken away, a lower bound on the energy of the whole layout (the
+    polish rejects a make-way move by it); with none taken away, the energy without the navigation term; an
+    object the layout leaves out is charged."""
+    from models.energy.weights import WEIGHTS
+    recs = load_dataset("dense")
+    rng = np.random.default_rng(2)
+    tight = 0
+    for plan in [r.plan for r in recs[:12]]:
+        ep = Episode(plan)
+        ep.finish_greedily()
+        full = CandidateEnergy(ep.problem, ep.placed)
+        terms = full.terms()
+        assert abs(full.floor(full) - (terms["total"] - WEIGHTS["nav"] * terms["nav"])) < 1e-9
+        assert full.floor(full) >= WEIGHTS["missing"] * len(ep.failed) / len(plan.objects) - 1e-12
+        for _ in range(5):
+            gone = rng.choice(len(ep.placed), size=int(rng.integers(1, 4)), replace=False)
+            part = CandidateEnergy(ep.problem, [p for i, p in enumerate(ep.placed) if i not in gone])
+            assert part.floor(full) <= terms["total"] + 1e-12
+            tight += part.floor(full) > terms["total"] - WEIGHTS["nav"] * terms["nav"] - 0.05
+    assert tight > 0  # the bound is not vacuous

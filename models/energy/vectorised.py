@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Collection
+from functools import cached_property
 
 import numpy as np
 
@@ -105,6 +106,14 @@ def _inflate(b: np.ndarray, r: float) -> np.ndarray:
     return b + np.array([-r, -r, r, r])
 
 
+_PER_LAYOUT = ("reach", "reach_count")  # CandidateEnergy's lazily labelled free space
+
+
+def _pose_key(p: Poses) -> tuple:
+    """One pose's (x, z, rotation), as the memo of `_own` and `_pair` keys it."""
+    return p.x[0], p.z[0], p.rotation[0]
+
+
 class CandidateEnergy:
     """Energy terms of `placed + candidate` for N candidates of one object."""
 
@@ -134,8 +143,6 @@ class CandidateEnergy:
         self.mesh = self.grid.mesh()
         self.start = nav.door_cells(self.grid, self.room)  # the doorway cells reachable_space starts from
         self.blocked = nav.blocked_by_boxes(self.grid, self.bodies)
-        self.reach = self._reachable(self.blocked)
-        self.reach_count = _Integral(self.grid, self.reach)
         self.door_boxes = [np.array(b, float) for b in nav.door_boxes(self.room)]
         self._strips: dict[tuple, np.ndarray] = {}  # access strip by pose (shared with `after`'s copies)
 
@@ -144,8 +151,7 @@ class CandidateEnergy:
         contributions only (its own terms, its pairs with the placed objects, one more box on the grid),
         instead of being recomputed over every placed object. Equals `CandidateEnergy(problem, placed + [p],
         pending)` up to float summation order (tested)."""
-        new = object.__new__(CandidateEnergy)
-        new.__dict__.update(self.__dict__)
+        new = self._copy()
         new.placed, new.pending = self.placed + [p], set(pending)
         pose = Poses.one(p.x, p.z, p.rotation, p.width, p.depth)
         new.poses = {**self.poses, p.id: pose}
@@ -157,16 +163,13 @@ class CandidateEnergy:
         new.zones = {**self.zones, p.id: zone} if zone is not None else dict(self.zones)
         new._add(self._contribution(p.id, pose, body, zone), 1)
         new.blocked = self._blocked_with(body[0])
-        new.reach = new._reachable(new.blocked)
-        new.reach_count = _Integral(self.grid, new.reach)
         return new
 
     def without(self, oid: str, pending: Collection[str] = ()) -> CandidateEnergy:
         """The set-up with placed object `oid` taken away (to score other poses for it): its contributions
         subtracted, the grid's blocked cells recomputed. Equals `CandidateEnergy(problem, placed minus oid,
         pending)` up to float summation order (tested)."""
-        new = object.__new__(CandidateEnergy)
-        new.__dict__.update(self.__dict__)
+        new = self._copy()
         j = next(i for i, q in enumerate(self.placed) if q.id == oid)
         new.placed, new.pending = self.placed[:j] + self.placed[j + 1:], set(pending)
         new.poses = {k: v for k, v in self.poses.items() if k != oid}
@@ -175,9 +178,23 @@ class CandidateEnergy:
         new.zones = {k: v for k, v in self.zones.items() if k != oid}
         new._add(new._contribution(oid, self.poses[oid], self.bodies[j:j + 1], self.zones.get(oid)), -1)
         new.blocked = nav.blocked_without(self.grid, self.mesh, self.blocked, self.bodies[j], new.bodies)
-        new.reach = new._reachable(new.blocked)
-        new.reach_count = _Integral(self.grid, new.reach)
         return new
+
+    def _copy(self) -> CandidateEnergy:
+        """A shallow copy for `after` and `without` to update, without what is labelled per layout."""
+        new = object.__new__(CandidateEnergy)
+        new.__dict__.update((k, v) for k, v in self.__dict__.items() if k not in _PER_LAYOUT)
+        return new
+
+    @cached_property
+    def reach(self) -> np.ndarray:
+        """The free cells the robot reaches from a doorway, labelled when first asked: many set-ups (the
+        polish's, with an object taken away before another is placed) are never scored."""
+        return self._reachable(self.blocked)
+
+    @cached_property
+    def reach_count(self) -> _Integral:
+        return _Integral(self.grid, self.reach)
 
     def _add(self, contribution: tuple, sign: int) -> None:
         rel_sum, rel_n, collision, oob, aff = contribution
@@ -264,7 +281,7 @@ class CandidateEnergy:
 
     def _own(self, oid: str, name: str, pose: Poses) -> float:
         """The relational energy of object `oid`'s global placement `name` at one pose, memoised as `_pair`."""
-        key = (name, oid, pose.x[0], pose.z[0], pose.rotation[0])
+        key = (name, oid, *_pose_key(pose))
         if (value := self._pairs.get(key)) is None:
             room = self.room
             e, _ = placement(name, pose, room.width, room.depth)
@@ -275,7 +292,7 @@ class CandidateEnergy:
 
     def _pair(self, name, a_id, b_id, a: Poses, b: Poses) -> float:
         """`_rel` of two single poses, memoised: adding and taking away objects judges the same pairs again."""
-        key = (name, a_id, b_id, a.x[0], a.z[0], a.rotation[0], b.x[0], b.z[0], b.rotation[0])
+        key = (name, a_id, b_id, *_pose_key(a), *_pose_key(b))
         if (value := self._pairs.get(key)) is None:
             value = self._pairs[key] = float(self._rel(name, a_id, b_id, a, b)[0])
         return value
@@ -297,6 +314,25 @@ class CandidateEnergy:
                  "aff": self.aff_sum / max(len(self.zones), 1), "missing": len(missing) / max(self.n_objects, 1)}
         terms["total"] = sum(WEIGHTS[k] * terms[k] for k in WEIGHTS)
         return terms
+
+    def remember(self, shared: Shared, k: int) -> None:
+        """Keep the relational energies `score` computed for candidate `k` of the step's cache `shared` as `_own`
+        and `_pair` key them: `after`, placing that candidate, looks them up instead of computing them again
+        (the same numbers: the same operations, element by element)."""
+        pose = (shared.poses.x[k], shared.poses.z[k], shared.poses.rotation[k])
+        for head, tail, values in shared.pieces:
+            self._pairs[(*head, *pose, *tail)] = float(values[k])
+
+    def floor(self, complete: CandidateEnergy) -> float:
+        """A lower bound on the energy of every layout that adds to these objects the others of `complete` (a
+        set-up of the whole layout, nothing pending), wherever they go: the relational, collision, out-of-bounds
+        and affordance sums only grow as objects are added, the counts they are divided by are `complete`'s, and
+        the navigation term is at least 0. What the polish rejects a make-way move by, before the objects that
+        make way are placed again."""
+        missing = sum(o.id not in complete.poses for o in self.problem.plan.objects) / max(self.n_objects, 1)
+        return (WEIGHTS["rel"] * math.log1p(self.rel_sum / max(complete.rel_n, 1))
+                + WEIGHTS["collision"] * math.log1p(self.collision_sum) + WEIGHTS["oob"] * math.log1p(self.oob_sum)
+                + WEIGHTS["aff"] * self.aff_sum / max(len(complete.zones), 1) + WEIGHTS["missing"] * missing)
 
     # ---- per candidate -----------------------------------------------------------------------------
 
@@ -322,18 +358,23 @@ class CandidateEnergy:
             e, _ = placement(oc.placement, poses, room.width, room.depth)
             clearance = wall_clearance(poses, room.width, room.depth)
         touching = clearance <= WALL_TOUCH
-        rel_sum = self.rel_sum + e * (1 + PRIOR_LAMBDA * self.prior.wall_energy(room.type, obj.type, touching))
-        rel_n = self.rel_n + 1
+        pieces = shared.pieces if shared is not None else []  # each (key's head, key's tail, per candidate)
+        own = e * (1 + PRIOR_LAMBDA * self.prior.wall_energy(room.type, obj.type, touching))
+        pieces.append(((oc.placement, obj.id), (), own))
+        rel_sum, rel_n = self.rel_sum + own, self.rel_n + 1
         for i, c in enumerate(oc.relations):
             if c.target in self.poses:
                 known = shared.relations.get((i, c.target)) if shared is not None else None
-                rel_sum = rel_sum + self._rel(c.name, obj.id, c.target, poses, self.poses[c.target], known)
-                rel_n += 1
+                target = self.poses[c.target]
+                pair = self._rel(c.name, obj.id, c.target, poses, target, known)
+                pieces.append(((c.name, obj.id, c.target), _pose_key(target), pair))
+                rel_sum, rel_n = rel_sum + pair, rel_n + 1
         for p in self.placed:
             for c in self.problem.constraints.objects[p.id].relations:
                 if c.target == obj.id:
-                    rel_sum = rel_sum + self._rel(c.name, p.id, obj.id, self.poses[p.id], poses)
-                    rel_n += 1
+                    pair = self._rel(c.name, p.id, obj.id, self.poses[p.id], poses)
+                    pieces.append(((c.name, p.id, obj.id, *_pose_key(self.poses[p.id])), (), pair))
+                    rel_sum, rel_n = rel_sum + pair, rel_n + 1
         rel = np.log1p(rel_sum / rel_n)
 
         # collision and out-of-bounds

@@ -55,6 +55,7 @@ class Shared:
     relations: dict = field(default_factory=dict)  # (relation index, target) -> (energy, box gap)
     collision: np.ndarray | None = None  # squared overlap areas with the placed bodies, summed in placed order
     zones_clear: bool = False  # the strict hard filter passed: no open front zone is blocked, own zone free
+    pieces: list = field(default_factory=list)  # the relational energies per candidate (CandidateEnergy.score)
 
     @classmethod
     def of(cls, cands: np.ndarray, obj: PlanObject, body: np.ndarray | None = None) -> Shared:

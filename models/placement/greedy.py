@@ -40,6 +40,7 @@ class Options:
     feasible: np.ndarray  # (M,) indices into cands
     terms: dict[str, np.ndarray]  # each (M,): energy of placed + candidate, remaining objects pending
     soft: np.ndarray  # (M,) the constraint score of candidates.CandidateScorer
+    shared: Shared | None = None  # what the soft score and the energy computed for the feasible ones
 
 
 def hard_filter(scorer: CandidateScorer, obj: PlanObject, placed: list[PlacedObject], cands: np.ndarray,
@@ -123,7 +124,7 @@ class Episode:
         shared.collision, shared.zones_clear = squared[feasible], strict
         soft = self.scorer.soft_scores(obj, cands[feasible], self.placed, shared)[0]
         terms = self._energy.score(obj, cands[feasible], shared=shared)
-        return Options(obj, cands, feasible, terms, soft)
+        return Options(obj, cands, feasible, terms, soft, shared)
 
     def apply(self, opts: Options, pick: int | None) -> float:
         """Place `opts.obj` at feasible candidate `pick` (None: it stays unplaced); the reward (energy drop)."""
@@ -136,6 +137,8 @@ class Episode:
         else:
             x, z, rot = (float(v) for v in opts.cands[opts.feasible[pick]])
             self.placed.append(self.scorer.place(opts.obj, x, z, rot))
+            if opts.shared is not None:
+                self._energy.remember(opts.shared, pick)
             self._energy = self._energy.after(self.placed[-1], pending={o.id for o in self.order[self.i + 2:]})
             self.terms = {k: float(v[pick]) for k, v in opts.terms.items()}
             after = self.terms["total"]

@@ -302,8 +302,10 @@ def _relocation(ep: Episode, now: Standing, oid: str, poses: int = MAKE_WAY_POSE
         base = setup()
         for b in blockers:
             base = base.without(b)
-        again = _place_again(ep, blockers, base.after(pose, pending=blockers[1:]), [*placed, pose], memo,
-                             f"making way for {oid}")
+        start = base.after(pose, pending=blockers[1:])
+        if start.floor(now.setup) > now.energy + 2 * TOL:  # no placing of the blockers keeps the energy (TOL
+            continue  # twice: the float sums' order)
+        again = _place_again(ep, blockers, start, [*placed, pose], memo, f"making way for {oid}")
         if again is None:
             continue
         placed, steps, final_setup = again
