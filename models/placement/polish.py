@@ -7,13 +7,14 @@ elsewhere: the layout's energy does not rise and no more task objects are out of
 - A free move: the legal pose that meets the most of its constraints, then of lowest energy (of the
   `CHECKS` best, the first that keeps reach).
 - Else a make-way move: a pose that meets more, where at most `moves.MAX_BLOCKERS` objects stand in the way,
-  by their bodies or by a front clearance (the pose's or theirs; `MAKE_WAY_POSES` such poses, one in a `crowded`
-  room, models.placement.moves.displacements); those are placed again, each where it meets the most
-  constraints, then at its lowest energy. A cheap screen (the same placing by constraints alone) drops the poses
-  that cannot meet more before any energy is computed.
+  by their bodies or by a front clearance (the pose's or theirs; `MAKE_WAY_POSES` such poses,
+  models.placement.moves.displacements); those are placed again, each where it meets the most constraints, then
+  at its lowest energy. A cheap screen (the same placing by constraints alone) and a floor of the energy
+  (`CandidateEnergy.floor`) drop the poses that cannot meet more, or cannot keep the energy, before the objects
+  making way are placed again.
 
-Fixed objects never move; each move is a placement step; the time counts in PTO. In a `crowded` room most
-make-way moves fail and each costs several ms, hence one pose per move there (README, Plan2Place).
+Fixed objects never move; each move is a placement step; the time counts in PTO. Crowded rooms once tried one pose
+per make-way move, for speed; three pay there too now (README, Plan2Place; `crowded-poses/`).
 """
 
 from __future__ import annotations
@@ -32,11 +33,9 @@ from models.placement.base import PlacementStep, StepObserver
 from models.placement.candidates import PlacedObject, poses_of
 from models.placement.greedy import Episode, hard_filter
 from models.placement.moves import displacements, legal_poses, move_step
-from models.values import ConstraintPlan
 
 CHECKS = 20
-MAKE_WAY_POSES, MAKE_WAY_POSES_CROWDED = 3, 1  # poses tried per make-way move (in a `crowded` room)
-CROWDED = 0.5  # share of the floor the plan's objects cover above which a room is `crowded`
+MAKE_WAY_POSES = 3  # poses tried per make-way move
 TOL = 1e-9  # energy: "does not rise"
 MORE_MET = "meeting more of its constraints"  # a moved object's step reason
 
@@ -65,12 +64,6 @@ def met(ep: Episode, oid: str, idx: np.ndarray | None, others: list[PlacedObject
             if c.target == oid:
                 count += relation(c.name, _pose(p), poses)[1]
     return count
-
-
-def crowded(plan: ConstraintPlan) -> bool:
-    """More than `CROWDED` of the floor covered by the plan's objects: every room of the `dense` set (50-65 %)
-    and 6 of the 120 iTHOR rooms of `human`; the generated sets' rooms stay under 43 %."""
-    return sum(o.size.x * o.size.z for o in plan.objects) > CROWDED * plan.room.width * plan.room.depth
 
 
 def _pose(p: PlacedObject) -> Poses:
@@ -264,9 +257,9 @@ def exactly(setup: CandidateEnergy, obj, cands: np.ndarray, legal: np.ndarray, t
     return judged
 
 
-def _relocation(ep: Episode, now: Standing, oid: str, poses: int = MAKE_WAY_POSES) -> Move | None:
+def _relocation(ep: Episode, now: Standing, oid: str) -> Move | None:
     """A move meeting more constraints than `now` with no more energy and no more task objects out of reach,
-    by a free or a make-way move of `oid` (trying `poses` poses; see the module); None if none is found."""
+    by a free or a make-way move of `oid` (see the module); None if none is found."""
     current = next(p for p in ep.placed if p.id == oid)
     others = [p for p in ep.placed if p is not current]
     obj = ep.problem.plan.object(oid)
@@ -288,7 +281,8 @@ def _relocation(ep: Episode, now: Standing, oid: str, poses: int = MAKE_WAY_POSE
 
     if len(legal) and (move := free_move(ep, now, obj, others, cands, legal, gain, setup(), lambda _: MORE_MET)):
         return move
-    for i, blockers in displacements(ep, obj, cands, swept, others, rank=gain, energy=setup, tries=poses, strips=True):
+    for i, blockers in displacements(ep, obj, cands, swept, others, rank=gain, energy=setup, tries=MAKE_WAY_POSES,
+                                      strips=True):
         placed = [p for p in others if p.id not in blockers]
         if not hard_filter(ep.scorer, obj, placed, cands[[i]], SweptBoxes(body[[i]]))[0][0]:
             continue
@@ -324,9 +318,9 @@ def polish(ep: Episode, observer: StepObserver | None = None) -> list[str]:
     """Move objects of the finished episode `ep` whose constraints are broken, each once, most broken first,
     when a move meets more of them at no cost (see the module); the ids moved, in order."""
     moved: list[str] = []
-    now, poses = Standing(ep), MAKE_WAY_POSES_CROWDED if crowded(ep.problem.plan) else MAKE_WAY_POSES
+    now = Standing(ep)
     for oid in broken(ep):
-        move = _relocation(ep, now, oid, poses)
+        move = _relocation(ep, now, oid)
         if move is None:
             continue
         now.moved(move)
