@@ -65,6 +65,7 @@ def test_decoding_passes_the_cache_under_the_name_this_transformers_uses(tiny):
     decoding uses whichever the model's forward takes, and reuses it (a few passes, no deprecation warning)."""
     import warnings
 
+    from models.language.adapters import quiet_peft
     from models.language.llm.base_model import load_base
     from models.language.llm.decoding import Grammar, cache_keyword, constrained_decode, prompt_text
     model, tok = load_base(str(tiny))
@@ -73,10 +74,18 @@ def test_decoding_passes_the_cache_under_the_name_this_transformers_uses(tiny):
         def forward(self, input_ids=None, past_key_values=None, use_cache=None): ...
 
     assert cache_keyword(Old) == "past_key_values"
+    from peft import LoraConfig, get_peft_model
+    prompt = tok(prompt_text("Put a mug on the table", None)).input_ids
     with warnings.catch_warnings():
         warnings.simplefilter("error", FutureWarning)
-        decoded = constrained_decode(model, Grammar(tok), tok(prompt_text("Put a mug on the table", None)).input_ids)
+        decoded = constrained_decode(model, Grammar(tok), prompt)
     assert decoded.forward_passes <= 12
+    # with a LoRA adapter (the shipped parser's case) the name is the base model's, which peft passes on
+    with quiet_peft():
+        lora = get_peft_model(model, LoraConfig(r=2, lora_alpha=4, target_modules=["q_proj", "v_proj"]))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", FutureWarning)
+        assert constrained_decode(lora, Grammar(tok), prompt).forward_passes <= 12
 
 
 def _train(tiny, out, steps, seed=0):

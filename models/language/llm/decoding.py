@@ -90,7 +90,8 @@ def constrained_decode(model, grammar: Grammar, prompt_ids: list[int]) -> Decode
     import torch
 
     past, pending, passes = None, list(prompt_ids), 0
-    logits, keyword = None, cache_keyword(type(model))
+    base = model.get_base_model() if hasattr(model, "get_base_model") else model  # a peft model passes it on
+    logits, keyword = None, cache_keyword(type(base))
     values, logps = [], []
     with torch.inference_mode():
         for index in range(4):

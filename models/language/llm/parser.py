@@ -12,7 +12,6 @@ from __future__ import annotations
 import json
 import threading
 import time
-import warnings
 from importlib import resources
 from pathlib import Path
 
@@ -79,6 +78,7 @@ def load_adapter(adapter: Path, base: str | None = None, threads: int | None = N
     """(merged model, grammar) from an adapter folder written by `h3ds train language`."""
     import torch
 
+    from models.language.adapters import quiet_peft
     from models.language.llm.base_model import SMOLLM2, load_base
     from models.language.llm.decoding import Grammar
     from models.language.llm.train import META_FILE
@@ -90,8 +90,7 @@ def load_adapter(adapter: Path, base: str | None = None, threads: int | None = N
     meta = json.loads((adapter / META_FILE).read_text()) if (adapter / META_FILE).exists() else {}
     model, tok = load_base(base or meta.get("config", {}).get("base", SMOLLM2))
     from peft import PeftModel  # imported only when a model is loaded
-    with warnings.catch_warnings():  # peft asks transformers 5.x a deprecated question; nothing for a user to do
-        warnings.filterwarnings("ignore", message=".*is_gradient_checkpointing.*", category=FutureWarning)
+    with quiet_peft():
         model = PeftModel.from_pretrained(model, str(adapter)).merge_and_unload()
     model.eval()
     return model, Grammar(tok)

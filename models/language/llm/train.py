@@ -18,6 +18,7 @@ import time
 from dataclasses import asdict, dataclass
 from pathlib import Path
 
+from models.language.adapters import quiet_peft
 from models.language.llm.base_model import SMOLLM2, load_base
 from models.language.llm.graph_text import GraphFields
 
@@ -94,14 +95,16 @@ def lora_model(model, cfg: TrainConfig):
         layers = list(range(n_layers - cfg.lora_layers, n_layers))
     config = LoraConfig(r=cfg.lora_r, lora_alpha=cfg.lora_alpha, lora_dropout=cfg.lora_dropout,
                         target_modules=linear_names(model), layers_to_transform=layers, task_type="CAUSAL_LM")
-    return get_peft_model(model, config)
+    with quiet_peft():
+        return get_peft_model(model, config)
 
 
 def from_adapter(model, adapter: str):
     """The base with a trained adapter, trainable, its LoRA weights in float32 (shipped adapters are
     float16)."""
     from peft import PeftModel
-    model = PeftModel.from_pretrained(model, adapter, is_trainable=True)
+    with quiet_peft():
+        model = PeftModel.from_pretrained(model, adapter, is_trainable=True)
     for p in model.parameters():
         if p.requires_grad:
             p.data = p.data.float()

@@ -59,10 +59,12 @@ def lora_encoder(adapter: str | Path | None = None):
     trainable, or loaded from the `adapter` folder for inference. peft is imported only here."""
     from peft import LoraConfig, PeftModel, get_peft_model
     from transformers import AutoModel
+    from models.language.adapters import quiet_peft
     base = AutoModel.from_pretrained(_minilm_path(), local_files_only=True)
-    if adapter is not None:
-        return PeftModel.from_pretrained(base, str(adapter)).eval()
-    return get_peft_model(base, LoraConfig(**LORA))
+    with quiet_peft():
+        if adapter is not None:
+            return PeftModel.from_pretrained(base, str(adapter)).eval()
+        return get_peft_model(base, LoraConfig(**LORA))
 
 
 def pooled(model, pairs: list[tuple[str, str]]):
