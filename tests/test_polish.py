@@ -168,3 +168,22 @@ def test_the_count_over_every_pose_agrees_with_the_count_of_the_layout(pid):
         assert (ep.scorer.placement_met(obj, name) == fresh).all()
         checked += everywhere[at[0]] > 0
     assert checked  # some object meets something, so the counts are not all zero
+
+
+def test_the_poses_that_may_meet_more_are_all_the_poses_that_do():
+    """`_may_gain` keeps, for an object whose relations alone cannot meet more than it meets now, only the poses
+    meeting its global placement: the poses that meet more are the same as when every pose is counted."""
+    from models.placement.polish import _may_gain
+    pruned = 0
+    for plan in [r.plan for r in load_dataset("unseen_a")[:30]]:
+        ep = _finished(plan)
+        for oid in broken(ep):
+            obj = plan.object(oid)
+            others = [p for p in ep.placed if p.id != oid]
+            now = met_among(ep, ep.placed, {oid})
+            every = np.flatnonzero(met(ep, oid, None, others) > now)
+            may = _may_gain(ep, obj, others, now)
+            if may is not None:
+                assert np.array_equal(may[met(ep, oid, may, others) > now], every), oid
+                pruned += len(may) < len(ep.scorer.bodies(obj)[0])
+    assert pruned >= 5

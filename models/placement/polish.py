@@ -257,6 +257,17 @@ def exactly(setup: CandidateEnergy, obj, cands: np.ndarray, legal: np.ndarray, t
     return judged
 
 
+def _may_gain(ep: Episode, obj, others: list[PlacedObject], now_met: int) -> np.ndarray | None:
+    """The poses of `obj` that could meet more than the `now_met` constraints it meets: where its relations alone
+    cannot (they are no more than that), only the poses meeting its global placement; None (every pose) otherwise.
+    It spares `met` most poses of an object whose one broken constraint is its wall (`edge`, the kind left unmet
+    most often)."""
+    oc = ep.problem.constraints.objects.get(obj.id)
+    if oc is None or _involved(ep, obj.id, others) - 1 > now_met:
+        return None
+    return np.flatnonzero(ep.scorer.placement_met(obj, oc.placement))
+
+
 def _relocation(ep: Episode, now: Standing, oid: str) -> Move | None:
     """A move meeting more constraints than `now` with no more energy and no more task objects out of reach,
     by a free or a make-way move of `oid` (see the module); None if none is found."""
@@ -264,12 +275,14 @@ def _relocation(ep: Episode, now: Standing, oid: str) -> Move | None:
     others = [p for p in ep.placed if p is not current]
     obj = ep.problem.plan.object(oid)
     cands, body = ep.scorer.bodies(obj)
-    gain = met(ep, oid, None, others) - met_among(ep, ep.placed, {oid})
-    better = np.flatnonzero(gain > 0)
+    now_met = met_among(ep, ep.placed, {oid})
+    may = _may_gain(ep, obj, others, now_met)
+    gain = met(ep, oid, may, others) - now_met
+    better = np.flatnonzero(gain > 0) if may is None else may[gain > 0]
     if not len(better):
         return None
     # from here on only the poses that meet more (the steps' heat-map shows those)
-    cands, body, gain = cands[better], body[better], gain[better]
+    cands, body, gain = cands[better], body[better], gain[gain > 0]
     swept = SweptBoxes(body)
     legal = legal_poses(ep, obj, others, cands, swept, relax=False)
     made: list[CandidateEnergy] = []
