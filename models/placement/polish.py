@@ -144,10 +144,11 @@ def _legal_among(ep: Episode, oid: str, placed: list[PlacedObject], memo: dict
 
 def _place_again(ep: Episode, movers: list[str], energy: CandidateEnergy, placed: list[PlacedObject], memo: dict,
                  why: str):
-    """(`placed` with `movers` placed again in order, their steps, the energy set-up of the result): each at
-    its legal pose meeting the most constraints, then of lowest energy (the later ones pending; `energy`: the
-    set-up of `placed` with `movers[1:]` pending; `why`: the steps' reason); None if one has no legal pose. A step
-    shows the poses meeting the most, among which the energy chose."""
+    """(`placed` with `movers` placed again in order, their steps, how to make the energy set-up of the result):
+    each at its legal pose meeting the most constraints, then of lowest energy (the later ones pending; `energy`:
+    the set-up of `placed` with `movers[1:]` pending; `why`: the steps' reason); None if one has no legal pose. A
+    step shows the poses meeting the most, among which the energy chose. The last set-up is made only if asked
+    for: most moves are refused on the last step's energy."""
     placed, steps = list(placed), []
     for k, oid in enumerate(movers):
         obj = ep.problem.plan.object(oid)
@@ -161,8 +162,16 @@ def _place_again(ep: Episode, movers: list[str], energy: CandidateEnergy, placed
             terms = exactly(energy, obj, cands, top, terms, best)
         placed.append(ep.scorer.place(obj, *(float(v) for v in cands[top[best]])))
         steps.append(move_step(oid, placed[-1], cands, top, best, terms, why))
-        energy = energy.after(placed[-1], pending=movers[k + 2:])
-    return placed, steps, energy
+        if k < len(movers) - 1:
+            energy = energy.after(placed[-1], pending=movers[k + 2:])
+    last, made = energy, []
+
+    def setup() -> CandidateEnergy:
+        if not made:
+            made.append(last.after(placed[-1]))
+        return made[0]
+
+    return placed, steps, setup
 
 
 def _most_met(ep: Episode, movers: list[str], placed: list[PlacedObject], memo: dict) -> list[PlacedObject] | None:
@@ -316,14 +325,13 @@ def _relocation(ep: Episode, now: Standing, oid: str) -> Move | None:
         if again is None:
             continue
         placed, steps, final_setup = again
-        if met_among(ep, placed, changed) <= was or \
-                (out := len(now.reach.unreachable(placed, reachable=final_setup.reach))) > now.out:
-            continue
         new_energy = steps[-1].terms["total"]  # the last one placed again: nothing pending
-        if new_energy <= now.energy + TOL:
-            final = {t: np.array([v]) for t, v in steps[-1].terms.items()}  # its step shows the final layout's
-            first = move_step(oid, pose, cands, np.array([i]), 0, final, MORE_MET)
-            return Move(placed, [first, *steps], new_energy, out, lambda: final_setup)
+        if met_among(ep, placed, changed) <= was or new_energy > now.energy + TOL or \
+                (out := len(now.reach.unreachable(placed, reachable=final_setup().reach))) > now.out:
+            continue
+        final = {t: np.array([v]) for t, v in steps[-1].terms.items()}  # its step shows the final layout's
+        first = move_step(oid, pose, cands, np.array([i]), 0, final, MORE_MET)
+        return Move(placed, [first, *steps], new_energy, out, final_setup)
     return None
 
 
