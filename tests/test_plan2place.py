@@ -355,10 +355,6 @@ def test_vectorised_observation_equals_the_loops():
         assert np.array_equal(obs.nodes, nodes) and np.array_equal(obs.edges, edges)
 
 
-if __name__ == "__main__":
-    record_plan2place()
-
-
 def test_train_placement_command_at_tiny_scale_with_the_repair_reward(tmp_path):
     from app.cli import main
     args = ["train", "placement", "--out", str(tmp_path), "--episodes", "2", "--batch", "2", "--hidden", "16",
@@ -370,3 +366,7 @@ def test_train_placement_command_at_tiny_scale_with_the_repair_reward(tmp_path):
     assert (tmp_path / "curves.png").stat().st_size > 1000 and (tmp_path / "plan2place.npz").exists()
     with pytest.raises(ValueError, match="another configuration"):  # resuming asks for the same options
         main([*args[:-1], "--episodes", "3"])
+
+
+if __name__ == "__main__":
+    record_plan2place()

@@ -21,7 +21,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
-from functools import cached_property, lru_cache
+from functools import cache, cached_property, lru_cache
 
 import numpy as np
 
@@ -164,14 +164,7 @@ def _place_again(ep: Episode, movers: list[str], energy: CandidateEnergy, placed
         steps.append(move_step(oid, placed[-1], cands, top, best, terms, why))
         if k < len(movers) - 1:
             energy = energy.after(placed[-1], pending=movers[k + 2:])
-    last, made = energy, []
-
-    def setup() -> CandidateEnergy:
-        if not made:
-            made.append(last.after(placed[-1]))
-        return made[0]
-
-    return placed, steps, setup
+    return placed, steps, cache(lambda: energy.after(placed[-1]))
 
 
 def _most_met(ep: Episode, movers: list[str], placed: list[PlacedObject], memo: dict) -> list[PlacedObject] | None:
@@ -294,12 +287,7 @@ def _relocation(ep: Episode, now: Standing, oid: str) -> Move | None:
     cands, body, gain = cands[better], body[better], gain[gain > 0]
     swept = SweptBoxes(body)
     legal = legal_poses(ep, obj, others, cands, swept, relax=False)
-    made: list[CandidateEnergy] = []
-
-    def setup() -> CandidateEnergy:  # the energy set-up with the others where they are, made when first needed
-        if not made:
-            made.append(now.setup.without(oid))
-        return made[0]
+    setup = cache(lambda: now.setup.without(oid))  # the energy set-up with the others where they are, when first needed
 
     if len(legal) and (move := free_move(ep, now, obj, others, cands, legal, gain, setup(), lambda _: MORE_MET)):
         return move
