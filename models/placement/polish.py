@@ -37,6 +37,7 @@ from models.placement.moves import displacements, legal_poses, move_step
 CHECKS = 20
 MAKE_WAY_POSES = 3  # poses tried per make-way move
 TOL = 1e-9  # energy: "does not rise"
+ALLOWANCE = 0.0  # EXPERIMENT: how much a move meeting more constraints may raise the energy
 MORE_MET = "meeting more of its constraints"  # a moved object's step reason
 
 
@@ -230,13 +231,13 @@ class Standing:
 
 def free_move(ep: Episode, now: Standing, obj, others: list[PlacedObject], cands: np.ndarray, legal: np.ndarray,
               gain: np.ndarray, setup: CandidateEnergy, why: Callable[[PlacedObject], str],
-              accept: Callable[[PlacedObject], bool] = lambda _: True) -> Move | None:
+              accept: Callable[[PlacedObject], bool] = lambda _: True, allowance: float = 0.0) -> Move | None:
     """Move `obj` alone (`others` where they are; `setup`: their energy set-up) to the first of its `legal`
     poses, most `gain` then lowest energy first (of the `CHECKS` best), that raises no energy, passes `accept`
     and leaves no more task objects out of reach; its step says `why(pose)`. None if none does."""
     terms = setup.score(obj, cands[legal])
     for k in np.lexsort((terms["total"], -gain[legal]))[:CHECKS]:
-        if terms["total"][k] > now.energy + TOL:
+        if terms["total"][k] > now.energy + allowance + TOL:
             continue
         pose = ep.scorer.place(obj, *(float(v) for v in cands[legal[k]]))
         if not accept(pose):
@@ -244,7 +245,7 @@ def free_move(ep: Episode, now: Standing, obj, others: list[PlacedObject], cands
         if (out := now.reach.out_with(others, setup.blocked, pose)) > now.out:
             continue
         judged = exactly(setup, obj, cands, legal, terms, int(k))
-        if judged["total"][k] <= now.energy + TOL:
+        if judged["total"][k] <= now.energy + allowance + TOL:
             return Move([*others, pose], [move_step(obj.id, pose, cands, legal, int(k), judged, why(pose))],
                         float(judged["total"][k]), out, lambda: setup.after(pose))
     return None
@@ -289,7 +290,8 @@ def _relocation(ep: Episode, now: Standing, oid: str) -> Move | None:
     legal = legal_poses(ep, obj, others, cands, swept, relax=False)
     setup = cache(lambda: now.setup.without(oid))  # the energy set-up with the others where they are, when first needed
 
-    if len(legal) and (move := free_move(ep, now, obj, others, cands, legal, gain, setup(), lambda _: MORE_MET)):
+    if len(legal) and (move := free_move(ep, now, obj, others, cands, legal, gain, setup(), lambda _: MORE_MET,
+                                              allowance=ALLOWANCE)):
         return move
     for i, blockers in displacements(ep, obj, cands, swept, others, rank=gain, energy=setup, tries=MAKE_WAY_POSES,
                                       strips=True):
@@ -307,14 +309,14 @@ def _relocation(ep: Episode, now: Standing, oid: str) -> Move | None:
         for b in blockers:
             base = base.without(b)
         start = base.after(pose, pending=blockers[1:])
-        if start.floor(now.setup) > now.energy + 2 * TOL:  # no placing of the blockers keeps the energy (TOL
+        if start.floor(now.setup) > now.energy + ALLOWANCE + 2 * TOL:  # no placing of the blockers keeps the energy (TOL
             continue  # twice: the float sums' order)
         again = _place_again(ep, blockers, start, [*placed, pose], memo, f"making way for {oid}")
         if again is None:
             continue
         placed, steps, final_setup = again
         new_energy = steps[-1].terms["total"]  # the last one placed again: nothing pending
-        if met_among(ep, placed, changed) <= was or new_energy > now.energy + TOL or \
+        if met_among(ep, placed, changed) <= was or new_energy > now.energy + ALLOWANCE + TOL or \
                 (out := len(now.reach.unreachable(placed, reachable=final_setup().reach))) > now.out:
             continue
         final = {t: np.array([v]) for t, v in steps[-1].terms.items()}  # its step shows the final layout's
