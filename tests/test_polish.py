@@ -1,6 +1,6 @@
 """The constraints' polish after the repairs: objects with a broken constraint are moved, alone or with a
-few objects making way, only when more constraints are met at no energy or reach cost. Never a fixed
-object; each move a step; a layout with nothing broken is untouched."""
+few objects making way, only when more constraints are met at no reach cost and with the energy raised by at most
+`ALLOWANCE` per move. Never a fixed object; each move a step; a layout with nothing broken is untouched."""
 
 import numpy as np
 import pytest
@@ -15,7 +15,7 @@ from models.placement.moves import displacements
 from models.constraints.evaluate import placement
 from models.placement.candidates import poses_of
 from models.placement.habits import crowded
-from models.placement.polish import MAKE_WAY_POSES, Standing, broken, met, met_among, polish
+from models.placement.polish import ALLOWANCE, MAKE_WAY_POSES, MORE_MET, Standing, broken, met, met_among, polish
 
 SEEN = {r.plan.id: r.plan for r in load_dataset("seen", "train")[:120]}
 
@@ -32,9 +32,16 @@ def _judged(plan, ep):
     return scene_metrics(plan, layout), layout_energy(plan, layout.placements).total, out_of_reach
 
 
+def _within_allowance(steps, start: float, end: float) -> bool:
+    """Each move (its steps begin with the moved object's, the last shows the moved layout's energy) raised the
+    energy by at most `ALLOWANCE`, from `start`, and the last ended at `end` (the layout's exact energy)."""
+    ends = [s.terms["total"] for k, s in enumerate(steps) if k + 1 == len(steps) or steps[k + 1].why == MORE_MET]
+    return all(b <= a + ALLOWANCE + 1e-9 for a, b in zip([start, *ends], ends)) and abs(ends[-1] - end) < 1e-9
+
+
 @pytest.mark.parametrize("pid, alone", [("seen-00037", True),  # the coffee table alone
                                         ("seen-00002", False)])  # the garbage can, two objects making way
-def test_a_move_meets_more_constraints_at_no_energy_or_reach_cost(pid, alone):
+def test_a_move_meets_more_constraints_at_no_reach_cost_within_the_energy_allowance(pid, alone):
     plan = SEEN[pid]
     ep = _finished(plan)
     before, energy, out = _judged(plan, ep)
@@ -43,7 +50,7 @@ def test_a_move_meets_more_constraints_at_no_energy_or_reach_cost(pid, alone):
     after, new_energy, new_out = _judged(plan, ep)
     assert moved and (len(moved) == 1) == alone and [s.object_id for s in steps] == moved
     assert after.constraint_satisfaction > before.constraint_satisfaction
-    assert new_energy <= energy + 1e-9 and new_out <= out and after.key_nav >= before.key_nav
+    assert _within_allowance(steps, energy, new_energy) and new_out <= out and after.key_nav >= before.key_nav
     assert after.collisions == 0 and after.oob == 0 and after.cnt == 1.0
     last = {s.object_id: (s.x, s.z, s.rotation) for s in steps}
     assert all((p.x, p.z, p.rotation) == last[p.id] for p in ep.placed if p.id in last)
@@ -52,25 +59,44 @@ def test_a_move_meets_more_constraints_at_no_energy_or_reach_cost(pid, alone):
     assert all(s.why == f"making way for {moved[0]}" for s in steps[1:])
 
 
-def _polished_at_no_cost(plans) -> int:
+def _polished_within_allowance(plans) -> int:
     """Polish greedy's layout of each plan; assert that each one changed meets more constraints, at no cost in
-    exact energy, reach, collisions or bounds (OOB counts objects left out too); how many changed."""
+    reach, collisions or bounds (OOB counts objects left out too), each move within the energy allowance; how many
+    changed."""
     changed = 0
     for plan in plans:
         ep = _finished(plan)
         before, energy, out = _judged(plan, ep)
-        if not polish(ep):
+        steps = []
+        if not polish(ep, steps.append):
             continue
         changed += 1
         after, new_energy, new_out = _judged(plan, ep)
         assert after.constraint_satisfaction > before.constraint_satisfaction, plan.id
-        assert new_energy <= energy + 1e-9 and new_out <= out and after.collisions == 0, plan.id
+        assert _within_allowance(steps, energy, new_energy), plan.id
+        assert new_out <= out and after.collisions == 0, plan.id
         assert after.oob <= before.oob and after.cnt >= before.cnt, plan.id
     return changed
 
 
-def test_on_many_plans_the_polish_never_costs_energy_reach_or_constraints():
-    assert _polished_at_no_cost(list(SEEN.values())[:40]) >= 10  # tested on real moves, not on layouts left alone
+def test_on_many_plans_the_polish_never_costs_reach_or_constraints_nor_more_energy_than_allowed():
+    assert _polished_within_allowance(list(SEEN.values())[:40]) >= 10  # on real moves, not on layouts left alone
+
+
+def test_the_allowance_lets_a_move_meet_more_constraints_for_a_little_more_energy(monkeypatch):
+    """On this crowded plan no move meets more without raising the energy; within the allowance one does."""
+    import models.placement.polish as polish_module
+    plan = next(r.plan for r in load_dataset("dense") if r.plan.id == "dense-00392")
+    monkeypatch.setattr(polish_module, "ALLOWANCE", 0.0)
+    assert polish(_finished(plan)) == []
+    monkeypatch.undo()
+    ep = _finished(plan)
+    before, energy, out = _judged(plan, ep)
+    steps = []
+    assert polish(ep, steps.append)
+    after, new_energy, new_out = _judged(plan, ep)
+    assert after.constraint_satisfaction > before.constraint_satisfaction and new_out <= out
+    assert energy < new_energy and _within_allowance(steps, energy, new_energy)
 
 
 def test_a_layout_with_nothing_broken_and_fixed_objects_are_left_as_they_are():
@@ -91,7 +117,7 @@ def test_the_greedy_solver_polishes_unless_told_not_to_repair():
     assert finished.constraint_satisfaction > plain.constraint_satisfaction
 
 
-def test_make_way_moves_try_as_many_poses_in_a_crowded_room_and_never_cost_energy_reach_or_constraints(monkeypatch):
+def test_make_way_moves_try_as_many_poses_in_a_crowded_room_and_never_cost_reach_or_constraints(monkeypatch):
     """Crowded rooms once tried one pose per move, for speed (README, Plan2Place; `crowded-poses/`)."""
     import models.placement.polish as polish_module
     tries = []
@@ -103,7 +129,7 @@ def test_make_way_moves_try_as_many_poses_in_a_crowded_room_and_never_cost_energ
     monkeypatch.setattr(polish_module, "displacements", spy)
     dense = [r.plan for r in load_dataset("dense")[:12]]
     assert all(crowded(p) for p in dense) and not any(crowded(p) for p in list(SEEN.values())[:40])
-    assert _polished_at_no_cost(dense) and tries and set(tries) == {MAKE_WAY_POSES}
+    assert _polished_within_allowance(dense) and tries and set(tries) == {MAKE_WAY_POSES}
     tries.clear()
     polish(_finished(SEEN["seen-00002"]))
     assert set(tries) == {MAKE_WAY_POSES}
@@ -134,9 +160,10 @@ def test_a_move_is_judged_by_the_exact_energy_not_by_the_fast_navigation_term(da
     plan = next(r.plan for r in load_dataset(dataset, "train" if dataset == "seen" else None) if r.plan.id == pid)
     ep = _finished(plan)
     _, energy, out = _judged(plan, ep)
-    polish(ep)
+    steps = []
+    polish(ep, steps.append)
     _, new_energy, new_out = _judged(plan, ep)
-    assert new_energy <= energy + 1e-9 and new_out <= out
+    assert (not steps or _within_allowance(steps, energy, new_energy)) and new_out <= out
 
 
 def test_the_polish_compares_a_move_with_the_exact_energy_of_the_layout_it_starts_from():
