@@ -75,8 +75,13 @@ def report(rows: list[dict]) -> str:
     return "\n".join(lines) + "\n"
 
 
+def main() -> None:
+    rows = run()
+    text = report(rows)
+    for name, body in (("runs.json", json.dumps(rows)), ("result.md", text)):
+        (HERE / name).write_text(body)
+    print(text)
+
+
 if __name__ == "__main__":
-    runs = run()
-    (HERE / "runs.json").write_text(json.dumps(runs))
-    (HERE / "result.md").write_text(report(runs))
-    print(report(runs))
+    main()
