@@ -14,8 +14,7 @@ from models.placement.greedy import Episode, GreedySolver, hard_filter
 from models.placement.moves import displacements
 from models.constraints.evaluate import placement
 from models.placement.candidates import poses_of
-from models.placement.habits import crowded
-from models.placement.polish import ALLOWANCE, MAKE_WAY_POSES, MORE_MET, Standing, broken, met, met_among, polish
+from models.placement.polish import ALLOWANCE, MAKE_WAY_POSES, MORE_MET, Standing, broken, crowded, met, met_among, polish
 
 SEEN = {r.plan.id: r.plan for r in load_dataset("seen", "train")[:120]}
 
@@ -214,3 +213,23 @@ def test_the_poses_that_may_meet_more_are_all_the_poses_that_do():
                 assert np.array_equal(may[met(ep, oid, may, others) > now], every), oid
                 pruned += len(may) < len(ep.scorer.bodies(obj)[0])
     assert pruned >= 5
+
+
+def test_a_crowded_room_gets_a_second_round_that_meets_more(monkeypatch):
+    """In a crowded room the objects still broken are tried once more when the first round moved anything (the
+    moves free and fill floor for one another); elsewhere one round."""
+    import models.placement.polish as polish_module
+    rounds = []
+
+    def spy(ep, observer):
+        rounds.append(polish_module.met_among(ep, ep.placed, {p.id for p in ep.placed}))
+        return round_(ep, observer)
+
+    round_ = polish_module._round
+    monkeypatch.setattr(polish_module, "_round", spy)
+    plan = next(r.plan for r in load_dataset("dense") if r.plan.id == "dense-00346")
+    ep = _finished(plan)
+    assert crowded(plan) and polish(ep)
+    assert len(rounds) == 2 and rounds[0] < rounds[1] < met_among(ep, ep.placed, {p.id for p in ep.placed})
+    rounds.clear()
+    assert not crowded(SEEN["seen-00002"]) and polish(_finished(SEEN["seen-00002"])) and len(rounds) == 1

@@ -23,11 +23,10 @@ from models.placement.base import StepObserver
 from models.placement.candidates import PlacedObject
 from models.placement.greedy import Episode
 from models.placement.moves import legal_poses
-from models.placement.polish import Move, Standing, free_move, met, met_among
+from models.placement.polish import Move, Standing, crowded, free_move, met, met_among
 from models.values import ConstraintPlan
 
 Companions = dict[str, list[tuple[str, float]]]  # type -> [(companion type, largest habitual gap)]
-CROWDED = 0.5  # share of the floor the plan's objects cover above which a room is `crowded`
 
 
 def companions(plan: ConstraintPlan) -> Companions:
@@ -111,12 +110,6 @@ def _move(ep: Episode, now: Standing, habits: Habits, p: PlacedObject, before: i
                      why=lambda pose: f"standing by its {', '.join(habits.beside(p.id, _footprint(pose)))}, as in the "
                                       "iTHOR rooms",
                      accept=lambda pose: habits.kept_with(p.id, _footprint(pose), before) > before)
-
-
-def crowded(plan: ConstraintPlan) -> bool:
-    """More than `CROWDED` of the floor covered by the plan's objects: every room of the `dense` set (50-65 %)
-    and 6 of the 120 iTHOR rooms of `human`; the generated sets' rooms stay under 43 %."""
-    return sum(o.size.x * o.size.z for o in plan.objects) > CROWDED * plan.room.width * plan.room.depth
 
 
 def keep_companions(ep: Episode, observer: StepObserver | None = None) -> list[str]:

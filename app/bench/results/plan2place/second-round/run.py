@@ -2,6 +2,9 @@
 `decision.md` names, the order alternating from run to run in one process; writes `runs.json` and `result.md` here.
 
     PYTHONPATH=. python app/bench/results/plan2place/second-round/run.py
+
+It ran on the code before the change it decided (one round everywhere); `polish` now runs the second round itself,
+so re-run it in a worktree of that commit (the one that added this script).
 """
 import hashlib
 import json
@@ -70,7 +73,7 @@ def run() -> list[dict]:
 
 def report(rows: list[dict]) -> str:
     rng = np.random.default_rng(0)
-    new, old = VARIANTS
+    old, new = VARIANTS
     lines = [f"{old} -> {new}: the difference, mean over the same (plan, seed) runs [95 % bootstrap interval over "
              "plans]; metrics x 100, energy as is, PTO in ms per object (the two alternating in one process); "
              "**bold** = better with the interval clear of 0, _italic_ = worse.", "", *header("set / placer", METRICS)]
