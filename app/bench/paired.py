@@ -59,3 +59,65 @@ def stored_table(results, sets, metrics, other, caption: str, name_other: bool =
             cells.append(f"{text} vs {name}" if name_other else text)
         lines.append(f"| {s} | " + " | ".join(cells) + " |")
     return "\n".join(lines) + "\n"
+
+
+def alternating(plan_sets: dict, where, attribute: str, variants: dict, metrics,
+                placers=("plan2place", "greedy")) -> list[dict]:
+    """Each placer on each (plan, seed) of `plan_sets` (label -> (plans, seeds)) under every variant in turn, the
+    variants' order reversed from run to run so that neither always runs on warm caches: one row per solve with the
+    `metrics` of the placement judge (pto_ms: ms per object), "set", "placer", "solver" (the variant), "plan", "seed"
+    and "layout" (a short hash of the poses). `variants`: name -> the value `where.attribute` takes in it (a module's
+    constant or function); the value it had is put back at the end."""
+    import hashlib
+    import sys
+    import time
+
+    from app.bench.placement import score
+    from models.placement.base import get_solver
+
+    rows, k, shipped = [], 0, getattr(where, attribute)
+    for label, (plans, seeds) in plan_sets.items():
+        print(label, len(plans), "plans", file=sys.stderr, flush=True)
+        for name in placers:
+            solver = get_solver(name)
+            for plan in plans:
+                for seed in seeds:
+                    k += 1
+                    for variant in list(variants)[::1 if k % 2 else -1]:
+                        setattr(where, attribute, variants[variant])
+                        t = time.perf_counter()
+                        layout = solver.solve(plan, seed=seed)
+                        ms = 1000 * (time.perf_counter() - t) / len(plan.objects)
+                        got = score(plan, layout)
+                        poses = sorted((p.id, p.x, p.z, p.rotation) for p in layout.placements)
+                        rows.append({**{m: got.get(m) for m, *_ in metrics if m != "pto_ms"}, "pto_ms": ms,
+                                     "set": label, "placer": name, "solver": variant, "plan": plan.id, "seed": seed,
+                                     "layout": hashlib.sha1(repr(poses).encode()).hexdigest()[:12]})
+    setattr(where, attribute, shipped)
+    return rows
+
+
+def store(folder, rows: list[dict], report: str) -> None:
+    """An experiment's runs (`runs.json`) and report (`result.md`) beside its script, and the report printed."""
+    import json
+
+    (folder / "runs.json").write_text(json.dumps(rows))
+    (folder / "result.md").write_text(report)
+    print(report)
+
+
+def variant_rows(rows: list[dict], old: str, new: str, metrics, placers=("plan2place", "greedy")) -> list[str]:
+    """The rows of a table of `new` - `old` (two variants of `alternating`'s runs) per set and placer, each naming
+    its runs and, where the runs carry their layouts, how many of those the variant left unchanged."""
+    rng, lines = np.random.default_rng(0), []
+    for label in dict.fromkeys(r["set"] for r in rows):
+        for placer in placers:
+            mine = [r for r in rows if r["set"] == label and r["placer"] == placer]
+            count = f"{len(mine) // 2} runs"
+            if all("layout" in r for r in mine):
+                layouts = {(r["plan"], r["seed"], r["solver"]): r["layout"] for r in mine}
+                same = sum(layouts[(p, s, new)] == layouts[(p, s, old)] for p, s, v in layouts if v == old)
+                count += f", {same} layouts unchanged"
+            cells = [cell(*(sc * v for v in interval(paired(mine, m, new, old), rng)), up, d) for m, sc, up, d in metrics]
+            lines.append(f"| {label} / {placer} ({count}) | " + " | ".join(cells) + " |")
+    return lines

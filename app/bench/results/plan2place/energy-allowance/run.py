@@ -2,20 +2,19 @@
 the two variants' order alternating from run to run in one process; writes `runs.json` and `result.md` here.
 
     PYTHONPATH=. python app/bench/results/plan2place/energy-allowance/run.py
+
+It ran before the polish's second round in crowded rooms (`second-round/`); re-run now, its `dense` rows would
+include that round in both variants.
 """
-import json
 import sys
-import time
 from pathlib import Path
 
 import numpy as np
 
 import models.placement.polish as polish
-from app.bench.paired import cell, header, interval, paired
-from app.bench.placement import score
+from app.bench.paired import alternating, header, store, variant_rows
 from models.datasets import load_dataset
 from models.datasets.fresh import fresh_plans
-from models.placement.base import get_solver
 
 sys.path.insert(0, str(Path(__file__).parents[1] / "lookahead-bound"))
 from run import diagnosis_plans  # noqa: E402
@@ -35,37 +34,14 @@ def plan_sets() -> dict[str, tuple[list, range]]:
 
 
 def run() -> list[dict]:
-    rows, k, shipped = [], 0, polish.ALLOWANCE
-    for label, (plans, seeds) in plan_sets().items():
-        print(label, len(plans), "plans", file=sys.stderr, flush=True)
-        for name in ("plan2place", "greedy"):
-            solver = get_solver(name)
-            for plan in plans:
-                for seed in seeds:
-                    k += 1
-                    for variant in list(VARIANTS)[::1 if k % 2 else -1]:
-                        polish.ALLOWANCE = VARIANTS[variant]
-                        t = time.perf_counter()
-                        layout = solver.solve(plan, seed=seed)
-                        ms = 1000 * (time.perf_counter() - t) / len(plan.objects)
-                        got = score(plan, layout)
-                        rows.append({**{m: got.get(m) for m, *_ in METRICS if m != "pto_ms"}, "pto_ms": ms,
-                                     "set": label, "placer": name, "solver": variant, "plan": plan.id, "seed": seed})
-    polish.ALLOWANCE = shipped
-    return rows
+    return alternating(plan_sets(), polish, "ALLOWANCE", VARIANTS, METRICS)
 
 
 def report(rows: list[dict]) -> str:
-    rng = np.random.default_rng(0)
     lines = [f"Allowance {ALLOWANCE} - none, mean over the same (plan, seed) runs [95 % bootstrap interval over plans]; "
              "metrics x 100, energy as is, PTO in ms per object (the two alternating in one process); **bold** = "
-             "better with the interval clear of 0, _italic_ = worse.", "", *header("set / placer", METRICS)]
-    for label in dict.fromkeys(r["set"] for r in rows):
-        for placer in ("plan2place", "greedy"):
-            mine = [r for r in rows if r["set"] == label and r["placer"] == placer]
-            cells = [cell(*(sc * v for v in interval(paired(mine, m, "allowance", "none"), rng)), up, d)
-                     for m, sc, up, d in METRICS]
-            lines.append(f"| {label} / {placer} ({len(mine) // 2} runs) | " + " | ".join(cells) + " |")
+             "better with the interval clear of 0, _italic_ = worse.", "", *header("set / placer", METRICS),
+             *variant_rows(rows, "none", "allowance", METRICS)]
     lines.append("")
     for label in dict.fromkeys(r["set"] for r in rows):
         mine = [r for r in rows if r["set"] == label and r["placer"] == "plan2place"]
@@ -75,13 +51,6 @@ def report(rows: list[dict]) -> str:
     return "\n".join(lines) + "\n"
 
 
-def main() -> None:
-    rows = run()
-    text = report(rows)
-    for name, body in (("runs.json", json.dumps(rows)), ("result.md", text)):
-        (HERE / name).write_text(body)
-    print(text)
-
-
 if __name__ == "__main__":
-    main()
+    runs = run()
+    store(HERE, runs, report(runs))
