@@ -221,9 +221,9 @@ def test_a_crowded_room_gets_a_second_round_that_meets_more(monkeypatch):
     import models.placement.polish as polish_module
     rounds = []
 
-    def spy(ep, observer):
+    def spy(ep, observer, moved, tried):
         rounds.append(polish_module.met_among(ep, ep.placed, {p.id for p in ep.placed}))
-        return round_(ep, observer)
+        return round_(ep, observer, moved, tried)
 
     round_ = polish_module._round
     monkeypatch.setattr(polish_module, "_round", spy)

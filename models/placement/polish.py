@@ -341,17 +341,22 @@ def polish(ep: Episode, observer: StepObserver | None = None) -> list[str]:
     """Move objects of the finished episode `ep` whose constraints are broken, each once, most broken first,
     when a move meets more of them at little cost; in a crowded room, the objects still broken once more if that
     moved anything (see the module); the ids moved, in order."""
-    moved = _round(ep, observer)
-    if moved and crowded(ep.problem.plan):
-        moved += _round(ep, observer)
+    moved: list[str] = []
+    tried: dict[str, int] = {}  # object -> how many ids had been moved when it was last tried
+    for _ in range(2 if crowded(ep.problem.plan) else 1):
+        if not _round(ep, observer, moved, tried):
+            break
     return moved
 
 
-def _round(ep: Episode, observer: StepObserver | None) -> list[str]:
-    """One round of `polish` over the objects broken now."""
-    moved: list[str] = []
-    now = Standing(ep)
+def _round(ep: Episode, observer: StepObserver | None, moved: list[str], tried: dict[str, int]) -> bool:
+    """One round of `polish` over the objects broken now, adding the ids it moves to `moved`; whether it moved any.
+    An object tried before with nothing moved since is passed over: on the same layout it would fail again."""
+    now, before = Standing(ep), len(moved)
     for oid in broken(ep):
+        if tried.get(oid) == len(moved):
+            continue
+        tried[oid] = len(moved)
         move = _relocation(ep, now, oid)
         if move is None:
             continue
@@ -359,4 +364,4 @@ def _round(ep: Episode, observer: StepObserver | None) -> list[str]:
         moved += [s.object_id for s in move.steps]
         for step in move.steps if observer is not None else ():
             observer(step)
-    return moved
+    return len(moved) > before

@@ -22,7 +22,9 @@ METRICS = (("constraint_satisfaction", 100, True, 2), ("cnt", 100, True, 2), ("k
 
 
 def one_round(ep, observer=None):
-    return polish._round(ep, observer)
+    moved = []
+    polish._round(ep, observer, moved, {})
+    return moved
 
 
 VARIANTS = {"one round": one_round, "two in crowded rooms": polish.polish}  # the second: the code as it is now
