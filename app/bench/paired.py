@@ -4,6 +4,11 @@ when the interval is clear of 0."""
 
 from __future__ import annotations
 
+import hashlib
+import json
+import sys
+import time
+
 import numpy as np
 
 DRAWS = 2000
@@ -47,7 +52,6 @@ def stored_table(results, sets, metrics, other, caption: str, name_other: bool =
     """A set x metric table of `a` - `other(rows, metric, higher_is_better)` (a solver's name) from the
     placement bench's stored runs (`results`/placement-<set>/results.json); `metrics`: (name, scale, higher is
     better, digits); with `name_other`, each cell names the solver it is paired with."""
-    import json
     rng = np.random.default_rng(0)
     lines = [caption, "", *header("set", metrics)]
     for s in sets:
@@ -68,10 +72,6 @@ def alternating(plan_sets: dict, where, attribute: str, variants: dict, metrics,
     `metrics` of the placement judge (pto_ms: ms per object), "set", "placer", "solver" (the variant), "plan", "seed"
     and "layout" (a short hash of the poses). `variants`: name -> the value `where.attribute` takes in it (a module's
     constant or function); the value it had is put back at the end."""
-    import hashlib
-    import sys
-    import time
-
     from app.bench.placement import score
     from models.placement.base import get_solver
 
@@ -89,18 +89,21 @@ def alternating(plan_sets: dict, where, attribute: str, variants: dict, metrics,
                         layout = solver.solve(plan, seed=seed)
                         ms = 1000 * (time.perf_counter() - t) / len(plan.objects)
                         got = score(plan, layout)
-                        poses = sorted((p.id, p.x, p.z, p.rotation) for p in layout.placements)
                         rows.append({**{m: got.get(m) for m, *_ in metrics if m != "pto_ms"}, "pto_ms": ms,
                                      "set": label, "placer": name, "solver": variant, "plan": plan.id, "seed": seed,
-                                     "layout": hashlib.sha1(repr(poses).encode()).hexdigest()[:12]})
+                                     "layout": fingerprint(layout)})
     setattr(where, attribute, shipped)
     return rows
 
 
+def fingerprint(layout) -> str:
+    """A short hash of a layout's poses: enough to tell whether two layouts are the same."""
+    poses = sorted((p.id, p.x, p.z, p.rotation) for p in layout.placements)
+    return hashlib.sha1(repr(poses).encode()).hexdigest()[:12]
+
+
 def store(folder, rows: list[dict], report: str) -> None:
     """An experiment's runs (`runs.json`) and report (`result.md`) beside its script, and the report printed."""
-    import json
-
     (folder / "runs.json").write_text(json.dumps(rows))
     (folder / "result.md").write_text(report)
     print(report)

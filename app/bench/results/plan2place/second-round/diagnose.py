@@ -4,7 +4,6 @@ move (`skip`), against one round; Plan2Place, the three in turn.
 
     PYTHONPATH=. python app/bench/results/plan2place/second-round/diagnose.py > diagnose.md
 """
-import hashlib
 import sys
 import time
 from pathlib import Path
@@ -12,7 +11,7 @@ from pathlib import Path
 import numpy as np
 import models.placement.repair as repair_mod
 from models.placement.polish import Standing, _relocation, broken, polish
-from app.bench.paired import cell, header, interval, paired
+from app.bench.paired import cell, fingerprint, header, interval, paired
 from app.bench.placement import score
 from models.placement.base import get_solver
 sys.path.insert(0, str(Path(__file__).parents[1] / "lookahead-bound"))
@@ -48,9 +47,6 @@ def twice_skip(ep, observer=None):
     moved, unsettled = one_round(ep, observer)
     return moved + (one_round(ep, observer, unsettled)[0] if moved else [])
 
-def fp(layout):
-    return hashlib.sha1(repr(sorted((p.id, p.x, p.z, p.rotation) for p in layout.placements)).encode()).hexdigest()[:10]
-
 VARIANTS = {"one": lambda ep, o=None: one_round(ep, o)[0], "two": twice, "skip": twice_skip}
 rows, tries = [], {v: 0 for v in VARIANTS}
 solver = get_solver("plan2place")
@@ -68,7 +64,7 @@ for ds in SETS:
                 ms = 1000 * (time.perf_counter() - t) / len(plan.objects)
                 tries[v] += TRIES["n"]
                 got = score(plan, layout)
-                rows.append({"set": ds, "plan": plan.id, "seed": seed, "solver": v, "ms": ms, "fp": fp(layout), **{m: got.get(m) for m, *_ in METRICS if m != "ms"}})
+                rows.append({"set": ds, "plan": plan.id, "seed": seed, "solver": v, "ms": ms, "fp": fingerprint(layout), **{m: got.get(m) for m, *_ in METRICS if m != "ms"}})
     print(ds, file=sys.stderr, flush=True)
 rng = np.random.default_rng(0)
 print("\n".join(header("set / variant - one", METRICS)))

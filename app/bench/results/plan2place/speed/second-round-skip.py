@@ -4,13 +4,13 @@ the layouts `second-round/runs.json` stored for two full rounds; and the time pe
 
     PYTHONPATH=. python app/bench/results/plan2place/speed/second-round-skip.py   # -> second-round-skip.txt
 """
-import hashlib
 import json
 import time
 from pathlib import Path
 
 import numpy as np
 
+from app.bench.paired import fingerprint
 from models.datasets.fresh import fresh_plans
 from models.placement.base import get_solver
 
@@ -24,9 +24,8 @@ for name in ("plan2place", "greedy"):
         for seed in range(5):
             t = time.perf_counter()
             layout = solver.solve(plan, seed=seed)
-            poses = sorted((p.id, p.x, p.z, p.rotation) for p in layout.placements)
             old = stored[(name, plan.id, seed)]
-            same += hashlib.sha1(repr(poses).encode()).hexdigest()[:12] == old["layout"]
+            same += fingerprint(layout) == old["layout"]
             if name == "plan2place":
                 ms["now"].append(1000 * (time.perf_counter() - t) / len(plan.objects))
                 ms["stored"].append(old["pto_ms"])
