@@ -2,8 +2,8 @@
 of the samples inside each function (inclusive), the warm-up solve left out.
 
     pip install py-spy   # not a project dependency
-    py-spy record -r 500 -f raw -o /tmp/p.raw -- python app/bench/results/plan2place/speed/profile.py run unseen_a
-    python app/bench/results/plan2place/speed/profile.py fold /tmp/p.raw
+    py-spy record -r 500 -f raw -o /tmp/p.raw -- python app/bench/results/plan2place/speed/sampling.py run unseen_a
+    python app/bench/results/plan2place/speed/sampling.py fold /tmp/p.raw
 """
 import collections
 import re
