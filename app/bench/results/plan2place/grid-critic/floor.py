@@ -100,12 +100,10 @@ JUDGED = 8  # the step's lowest-energy candidates the critic judges, with the ac
 ROOMIER = "the floor critic expects it to leave more room for the objects still to come"  # a step's reason
 
 
-def floor_choice(ep: Episode, opts, subset: np.ndarray, logits: np.ndarray, a: int, critic: FloorCritic,
-                 guard: bool) -> int:
-    """Of the step's JUDGED lowest-energy candidates and the actor's pick `a` (indices into `subset`, sorted by
-    energy), the one of lowest predicted final energy (its energy after the step + the critic's energy still to
-    come) among those that keep every task object reachable (with `guard`; if none does, `a`)."""
-    judged = np.array(sorted({*range(min(JUDGED, len(subset))), a}))
+def after_states(ep: Episode, opts, subset: np.ndarray, judged: np.ndarray, logits: np.ndarray
+                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """For the candidates `subset[judged]` of the step (`logits`: the actor's over `subset`): the rasters and the
+    numbers of their after-states, and their energies after the step."""
     logp = logits - np.logaddexp.reduce(logits)
     step = opts.terms["total"][subset[judged]]
     rasters, nums, after = [], [], []
@@ -115,7 +113,17 @@ def floor_choice(ep: Episode, opts, subset: np.ndarray, logits: np.ndarray, a: i
         rasters.append(raster(twin))
         nums.append(numbers(twin, 10 * (e - step.min()), float(logp[j])))
         after.append(twin.energy)
-    predicted = np.array(after) + critic(np.stack(rasters), np.stack(nums))
+    return np.stack(rasters), np.stack(nums), np.array(after)
+
+
+def floor_choice(ep: Episode, opts, subset: np.ndarray, logits: np.ndarray, a: int, critic: FloorCritic,
+                 guard: bool) -> int:
+    """Of the step's JUDGED lowest-energy candidates and the actor's pick `a` (indices into `subset`, sorted by
+    energy), the one of lowest predicted final energy (its energy after the step + the critic's energy still to
+    come) among those that keep every task object reachable (with `guard`; if none does, `a`)."""
+    judged = np.array(sorted({*range(min(JUDGED, len(subset))), a}))
+    rasters, nums, after = after_states(ep, opts, subset, judged, logits)
+    predicted = after + critic(rasters, nums)
     if guard:
         keep = ep.keeping(opts, subset[judged])
         if not keep.any():

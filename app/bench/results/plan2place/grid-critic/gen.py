@@ -21,7 +21,7 @@ from models.datasets.varied import varied_plan
 from models.placement.plan2place.policy import shipped_policy
 
 sys.path.insert(0, str(Path(__file__).parent))
-from floor import JUDGED, numbers, raster  # noqa: E402
+from floor import JUDGED, after_states  # noqa: E402
 
 SEED = 11
 
@@ -39,19 +39,10 @@ def episode(plan, rng: np.random.Generator) -> list[dict]:
     policy = shipped_policy()
 
     def record(ep, opts, subset, obs, a, rng):
-        logits = policy(obs)
-        logp = logits - np.logaddexp.reduce(logits)
-        judged = sorted({*range(min(JUDGED, len(subset))), a})
-        step = opts.terms["total"][subset[judged]]
-        rasters, nums, after = [], [], []
-        for j, e in zip(judged, step):
-            twin = ep.fork()
-            twin.apply(opts, int(subset[j]))
-            rasters.append(raster(twin))
-            nums.append(numbers(twin, 10 * (e - step.min()), float(logp[j])))
-            after.append(twin.energy)
-        return {"plan": plan.id, "judged": np.array(judged), "policy": a, "finals": ep.judge(opts, subset[judged]),
-                "energy_after": np.array(after), "rasters": np.stack(rasters), "numbers": np.stack(nums)}
+        judged = np.array(sorted({*range(min(JUDGED, len(subset))), a}))
+        rasters, nums, after = after_states(ep, opts, subset, judged, policy(obs))
+        return {"plan": plan.id, "judged": judged, "policy": a, "finals": ep.judge(opts, subset[judged]),
+                "energy_after": after, "rasters": rasters, "numbers": nums}
 
     return _walk()(plan, rng, record)
 
