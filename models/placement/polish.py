@@ -284,8 +284,8 @@ def _may_gain(ep: Episode, obj, others: list[PlacedObject], now_met: int) -> np.
 
 
 def _relocation(ep: Episode, now: Standing, oid: str) -> Move | None:
-    """A move meeting more constraints than `now` with no more energy and no more task objects out of reach,
-    by a free or a make-way move of `oid` (see the module); None if none is found."""
+    """A move meeting more constraints than `now`, raising the energy by at most `ALLOWANCE` and leaving no more task
+    objects out of reach, by a free or a make-way move of `oid` (see the module); None if none is found."""
     current = next(p for p in ep.placed if p.id == oid)
     others = [p for p in ep.placed if p is not current]
     obj = ep.problem.plan.object(oid)

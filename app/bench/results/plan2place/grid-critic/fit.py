@@ -16,15 +16,19 @@ import numpy as np
 import torch
 from torch import nn
 
+sys.path.insert(0, str(Path(__file__).parent))
+from floor import JUDGED, LAYERS, NUMBERS, SIDE  # noqa: E402
+
 EPOCHS, LR, BATCH, SEED = 20, 1e-3, 64, 0
 TEMPERATURE = 0.01  # the rank loss: softmax of -(final - best) / TEMPERATURE over a step's candidates
-WIDTH = 9  # candidates per step at most: the 8 lowest-energy and the policy's pick
+WIDTH = JUDGED + 1  # candidates per step at most: the lowest-energy ones and the policy's pick
 
 
 class GridCritic(nn.Module):
-    """Rasters (B, 5, 32, 32) and numbers (B, 9) -> the predicted final energy minus the energy after the step."""
+    """Rasters (B, LAYERS, SIDE, SIDE) and numbers (B, NUMBERS) -> the predicted final energy minus the energy after
+    the step."""
 
-    def __init__(self, channels: int = 5, numbers: int = 9):
+    def __init__(self, channels: int = LAYERS, numbers: int = NUMBERS):
         super().__init__()
         self.conv = nn.Sequential(
             nn.Conv2d(channels, 16, 3, padding=1), nn.ReLU(), nn.MaxPool2d(2),
@@ -41,8 +45,8 @@ class GridCritic(nn.Module):
 def tensors(steps: list[dict]) -> dict[str, torch.Tensor]:
     """The steps padded to WIDTH candidates: rasters, numbers, finals, energies after, mask, greedy and policy index."""
     s = len(steps)
-    r = np.zeros((s, WIDTH, 5, 32, 32), np.uint8)
-    n = np.zeros((s, WIDTH, 9), np.float32)
+    r = np.zeros((s, WIDTH, LAYERS, SIDE, SIDE), np.uint8)
+    n = np.zeros((s, WIDTH, NUMBERS), np.float32)
     f, e, m = np.zeros((s, WIDTH)), np.zeros((s, WIDTH)), np.zeros((s, WIDTH), bool)
     pol = np.zeros(s, np.int64)
     for i, st in enumerate(steps):

@@ -35,6 +35,9 @@ def _walk():
     return module.walk
 
 
+walk = _walk()
+
+
 def episode(plan, rng: np.random.Generator) -> list[dict]:
     policy = shipped_policy()
 
@@ -44,7 +47,7 @@ def episode(plan, rng: np.random.Generator) -> list[dict]:
         return {"plan": plan.id, "judged": judged, "policy": a, "finals": ep.judge(opts, subset[judged]),
                 "energy_after": after, "rasters": rasters, "numbers": nums}
 
-    return _walk()(plan, rng, record)
+    return walk(plan, rng, record)
 
 
 def plan_of(k: int, seen: list):
