@@ -189,8 +189,10 @@ def test_solver_steps_are_the_policy_and_fixed_poses_are_kept():
     layout = solver.solve(plan, seed=0, observer=steps.append)
     m = scene_metrics(plan, layout, PlacementProblem.from_plan(plan))
     assert m.collisions == 0 and m.oob == 0 or layout.unplaced
-    assert len(steps) == len(PlacementProblem.from_plan(plan).order)
-    for s in steps:
+    placing = len(PlacementProblem.from_plan(plan).order)  # one step per object, then the repairs' moves
+    assert len(steps) >= placing and all(s.why for s in steps[placing:])
+    assert {s.object_id for s in steps[:placing]} == {o.id for o in plan.objects}
+    for s in steps[:placing]:
         if s.x is not None:
             finite = np.isfinite(s.scores)
             assert abs(s.scores[finite].sum() - 1) < 1e-4 and s.scores[finite].max() > 0

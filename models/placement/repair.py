@@ -25,6 +25,7 @@ import numpy as np
 from models.energy.vectorised import CandidateEnergy
 from models.placement.base import StepObserver
 from models.placement.greedy import NO_ROOM, Episode
+from models.placement.groups import regroup
 from models.placement.habits import keep_companions
 from models.placement.moves import displacements, legal_poses, move_step, scored
 from models.placement.polish import Move, Standing, exactly, polish
@@ -58,9 +59,10 @@ def _best_move(ep: Episode, now: Standing, oid: str) -> Move | None:
 
 
 def repair(ep: Episode, observer: StepObserver | None = None) -> list[str]:
-    """Every pass on the finished episode `ep` (room for the left-out, access, the constraints' polish and
-    the companions' pass, which never lose access): the ids moved or placed, in order."""
-    return make_room(ep, observer) + restore_access(ep, observer) + polish(ep, observer) + keep_companions(ep, observer)
+    """Every pass on the finished episode `ep` (room for the left-out, access, the constraints' polish, its group
+    moves and the companions' pass, which never lose access): the ids moved or placed, in order."""
+    return make_room(ep, observer) + restore_access(ep, observer) + polish(ep, observer) + regroup(ep, observer) + \
+        keep_companions(ep, observer)
 
 
 def make_room(ep: Episode, observer: StepObserver | None = None) -> list[str]:
