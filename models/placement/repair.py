@@ -1,8 +1,8 @@
 """Repairs after the last object (not in the paper): a step-wise placer decides each object once, so what
 an early choice costs later is only seen at the end. The passes run only when something is wrong, each
 move is a placement step for the observer, fixed objects never move, and their time counts in PTO. The
-third and fourth passes, the constraints' polish and the companions' pass, are in models.placement.polish
-and models.placement.habits.
+later passes, the constraints' polish, its group moves and the companions' pass, are in models.placement.polish,
+models.placement.groups and models.placement.habits.
 
 - `make_room`: an object left out for want of room is placed where at most `MAX_BLOCKERS` placed objects
   stand in its way (fewest first, then its lowest energy; `TRIES` such poses; models.placement.moves), and
