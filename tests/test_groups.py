@@ -7,36 +7,22 @@ import itertools
 import pytest
 
 from models.datasets import load_dataset
-from models.energy.exact import layout_energy
-from models.metrics import scene_metrics
 from models.placement import groups
-from models.placement.greedy import Episode
 from models.placement.groups import FEW, GROUP, TOGETHER, _orders, group_of, regroup
-from models.placement.polish import ALLOWANCE, _most_met, broken, met_among, polish
+from models.placement.polish import ALLOWANCE, _most_met, broken, met_among
+from episode_support import judged, polished
 
 PLANS = {r.plan.id: r.plan for ds, split in (("seen", "train"), ("human", None)) for r in load_dataset(ds, split)[:120]}
-
-
-def _polished(plan, fixed=None) -> Episode:
-    ep = Episode(plan, fixed)
-    ep.finish_greedily()
-    polish(ep)
-    return ep
-
-
-def _judged(plan, ep):
-    layout = ep.layout("greedy", 0, 0.0)
-    return scene_metrics(plan, layout), layout_energy(plan, layout.placements).total, len(ep.reach.unreachable(ep.placed))
 
 
 @pytest.mark.parametrize("pid", ["seen-00002", "seen-00003", "human-FloorPlan16"])
 def test_a_group_move_meets_more_constraints_at_no_reach_cost_within_the_energy_allowance(pid):
     plan = PLANS[pid]
-    ep = _polished(plan)
-    before, energy, out = _judged(plan, ep)
+    ep = polished(plan)
+    before, energy, out = judged(plan, ep)
     steps = []
     moved = regroup(ep, steps.append)
-    after, new_energy, new_out = _judged(plan, ep)
+    after, new_energy, new_out = judged(plan, ep)
     assert moved and [s.object_id for s in steps] == moved and all(s.why == TOGETHER for s in steps)
     assert after.constraint_satisfaction > before.constraint_satisfaction
     assert new_energy <= energy + ALLOWANCE * len(set(moved)) and abs(steps[-1].terms["total"] - new_energy) < 1e-9
@@ -48,7 +34,7 @@ def test_a_group_move_meets_more_constraints_at_no_reach_cost_within_the_energy_
 
 def test_a_group_follows_the_relations_breadth_first_and_never_takes_a_fixed_object():
     plan = PLANS["seen-00002"]
-    ep = _polished(plan)
+    ep = polished(plan)
     objects = ep.problem.constraints.objects
 
     def related(a, b):
@@ -60,7 +46,7 @@ def test_a_group_follows_the_relations_breadth_first_and_never_takes_a_fixed_obj
         assert group[0] == oid and 2 <= len(group) <= GROUP and len(set(group)) == len(group)
         assert all(any(related(a, b) for a in group[:k]) for k, b in enumerate(group) if k)
         partner = group[1]
-        pinned = _polished(plan, fixed={p.id: (p.x, p.z, p.rotation) for p in ep.placed if p.id == partner})
+        pinned = polished(plan, fixed={p.id: (p.x, p.z, p.rotation) for p in ep.placed if p.id == partner})
         assert partner not in group_of(pinned, oid)
 
 
@@ -70,7 +56,7 @@ def test_the_screen_finds_the_first_order_a_search_over_every_order_finds(monkey
     monkeypatch.setattr(groups, "SCREENS", 10 ** 6)
     found = 0
     for pid in ("seen-00002", "seen-00003", "seen-00018", "human-FloorPlan16", "human-FloorPlan206"):
-        ep = _polished(PLANS[pid])
+        ep = polished(PLANS[pid])
         for oid in broken(ep):
             group = group_of(ep, oid)
             rest = [p for p in ep.placed if p.id not in group]
@@ -84,8 +70,8 @@ def test_the_screen_finds_the_first_order_a_search_over_every_order_finds(monkey
 
 
 def test_a_layout_with_many_objects_broken_or_none_is_left_alone():
-    crowded = next(ep for pid in PLANS if len(broken(ep := _polished(PLANS[pid]))) > FEW)
+    crowded = next(ep for pid in PLANS if len(broken(ep := polished(PLANS[pid]))) > FEW)
     before = [(p.id, p.x, p.z, p.rotation) for p in crowded.placed]
     assert regroup(crowded) == [] and [(p.id, p.x, p.z, p.rotation) for p in crowded.placed] == before
-    done = next(ep for pid in PLANS if not broken(ep := _polished(PLANS[pid])))
+    done = next(ep for pid in PLANS if not broken(ep := polished(PLANS[pid])))
     assert regroup(done) == []

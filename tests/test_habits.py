@@ -4,28 +4,12 @@ of them at no constraint, energy or reach cost; never a fixed object, nothing in
 import numpy as np
 
 from models.datasets import load_dataset
-from models.energy.exact import layout_energy
 from models.energy.prior import relation_prior
-from models.metrics import scene_metrics
-from models.placement.greedy import Episode
 from models.placement import habits
 from models.placement.habits import Habits, keep_companions
-from models.placement.polish import polish
+from episode_support import judged, polished
 
 PLANS = [r.plan for r in load_dataset("seen", "train")[:80]]
-
-
-def _finished(plan, fixed=None):
-    ep = Episode(plan, fixed)
-    ep.finish_greedily()
-    polish(ep)
-    return ep
-
-
-def _judged(plan, ep):
-    layout = ep.layout("greedy", 0, 0.0)
-    out_of_reach = len(ep.reach.unreachable(ep.placed))
-    return scene_metrics(plan, layout), layout_energy(plan, layout.placements).total, out_of_reach
 
 
 def test_habits_come_from_the_training_rooms_prior():
@@ -39,8 +23,8 @@ def test_habits_come_from_the_training_rooms_prior():
 def test_on_many_plans_a_move_keeps_more_habits_and_costs_nothing():
     moved_plans = 0
     for plan in PLANS:
-        ep = _finished(plan)
-        before, energy, out = _judged(plan, ep)
+        ep = polished(plan)
+        before, energy, out = judged(plan, ep)
         kept_before = Habits(plan, ep.placed).kept()
         steps = []
         moved = keep_companions(ep, steps.append)
@@ -51,7 +35,7 @@ def test_on_many_plans_a_move_keeps_more_habits_and_costs_nothing():
         if not moved:
             continue
         moved_plans += 1
-        after, new_energy, new_out = _judged(plan, ep)
+        after, new_energy, new_out = judged(plan, ep)
         assert Habits(plan, ep.placed).kept() > kept_before, plan.id
         assert after.constraint_satisfaction >= before.constraint_satisfaction, plan.id
         assert new_energy <= energy + 1e-9 and new_out <= out, plan.id
@@ -60,10 +44,10 @@ def test_on_many_plans_a_move_keeps_more_habits_and_costs_nothing():
 
 
 def test_fixed_objects_never_move_and_a_crowded_room_is_left_alone(monkeypatch):
-    plan = next(p for p in PLANS if keep_companions(_finished(p)))
-    fixed = {p.id: (p.x, p.z, p.rotation) for p in _finished(plan).placed}
-    assert keep_companions(_finished(plan, fixed)) == []
-    dense = _finished(load_dataset("dense")[0].plan)
+    plan = next(p for p in PLANS if keep_companions(polished(p)))
+    fixed = {p.id: (p.x, p.z, p.rotation) for p in polished(plan).placed}
+    assert keep_companions(polished(plan, fixed)) == []
+    dense = polished(load_dataset("dense")[0].plan)
 
     def not_asked(plan):
         raise AssertionError("a crowded room's habits were looked up")
@@ -75,7 +59,7 @@ def test_the_habits_kept_after_a_move_are_counted_again_only_where_the_move_can_
     """`kept_with` (the companions' pass's test of a pose) equals `kept` of the whole moved layout."""
     rng, checked, changed = np.random.default_rng(0), 0, 0
     for plan in PLANS[:20]:
-        ep = _finished(plan)
+        ep = polished(plan)
         h = Habits(plan, ep.placed)
         now = h.kept()
         for p in ep.placed:

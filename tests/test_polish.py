@@ -6,29 +6,17 @@ import numpy as np
 import pytest
 
 from models.datasets import load_dataset
-from models.energy.exact import layout_energy
 from models.geometry import SweptBoxes, overlap_many
 from models.metrics import scene_metrics
 from models.placement.candidates import OVERLAP_TOL
-from models.placement.greedy import Episode, GreedySolver, hard_filter
+from models.placement.greedy import GreedySolver, hard_filter
 from models.placement.moves import displacements
 from models.constraints.evaluate import placement
 from models.placement.candidates import poses_of
 from models.placement.polish import ALLOWANCE, MAKE_WAY_POSES, MORE_MET, Standing, broken, crowded, met, met_among, polish
+from episode_support import finished, judged
 
 SEEN = {r.plan.id: r.plan for r in load_dataset("seen", "train")[:120]}
-
-
-def _finished(plan, fixed=None):
-    ep = Episode(plan, fixed)
-    ep.finish_greedily()
-    return ep
-
-
-def _judged(plan, ep):
-    layout = ep.layout("greedy", 0, 0.0)
-    out_of_reach = len(ep.reach.unreachable(ep.placed))
-    return scene_metrics(plan, layout), layout_energy(plan, layout.placements).total, out_of_reach
 
 
 def _within_allowance(steps, start: float, end: float) -> bool:
@@ -42,11 +30,11 @@ def _within_allowance(steps, start: float, end: float) -> bool:
                                         ("seen-00002", False)])  # the garbage can, two objects making way
 def test_a_move_meets_more_constraints_at_no_reach_cost_within_the_energy_allowance(pid, alone):
     plan = SEEN[pid]
-    ep = _finished(plan)
-    before, energy, out = _judged(plan, ep)
+    ep = finished(plan)
+    before, energy, out = judged(plan, ep)
     steps = []
     moved = polish(ep, steps.append)
-    after, new_energy, new_out = _judged(plan, ep)
+    after, new_energy, new_out = judged(plan, ep)
     assert moved and (len(moved) == 1) == alone and [s.object_id for s in steps] == moved
     assert after.constraint_satisfaction > before.constraint_satisfaction
     assert _within_allowance(steps, energy, new_energy) and new_out <= out and after.key_nav >= before.key_nav
@@ -64,13 +52,13 @@ def _polished_within_allowance(plans) -> int:
     changed."""
     changed = 0
     for plan in plans:
-        ep = _finished(plan)
-        before, energy, out = _judged(plan, ep)
+        ep = finished(plan)
+        before, energy, out = judged(plan, ep)
         steps = []
         if not polish(ep, steps.append):
             continue
         changed += 1
-        after, new_energy, new_out = _judged(plan, ep)
+        after, new_energy, new_out = judged(plan, ep)
         assert after.constraint_satisfaction > before.constraint_satisfaction, plan.id
         assert _within_allowance(steps, energy, new_energy), plan.id
         assert new_out <= out and after.collisions == 0, plan.id
@@ -87,26 +75,26 @@ def test_the_allowance_lets_a_move_meet_more_constraints_for_a_little_more_energ
     import models.placement.polish as polish_module
     plan = next(r.plan for r in load_dataset("dense") if r.plan.id == "dense-00392")
     monkeypatch.setattr(polish_module, "ALLOWANCE", 0.0)
-    assert polish(_finished(plan)) == []
+    assert polish(finished(plan)) == []
     monkeypatch.undo()
-    ep = _finished(plan)
-    before, energy, out = _judged(plan, ep)
+    ep = finished(plan)
+    before, energy, out = judged(plan, ep)
     steps = []
     assert polish(ep, steps.append)
-    after, new_energy, new_out = _judged(plan, ep)
+    after, new_energy, new_out = judged(plan, ep)
     assert after.constraint_satisfaction > before.constraint_satisfaction and new_out <= out
     assert energy < new_energy and _within_allowance(steps, energy, new_energy)
 
 
 def test_a_layout_with_nothing_broken_and_fixed_objects_are_left_as_they_are():
     plan = SEEN["seen-00000"]
-    ep = _finished(plan)
+    ep = finished(plan)
     poses = [(p.id, p.x, p.z, p.rotation) for p in ep.placed]
     assert not broken(ep) and polish(ep) == [] and [(p.id, p.x, p.z, p.rotation) for p in ep.placed] == poses
     plan = SEEN["seen-00002"]
-    fixed = {p.id: (p.x, p.z, p.rotation) for p in _finished(plan).placed}
-    again = _finished(plan, fixed)
-    assert broken(_finished(plan)) and broken(again) == [] and polish(again) == []
+    fixed = {p.id: (p.x, p.z, p.rotation) for p in finished(plan).placed}
+    again = finished(plan, fixed)
+    assert broken(finished(plan)) and broken(again) == [] and polish(again) == []
 
 
 def test_the_greedy_solver_polishes_unless_told_not_to_repair():
@@ -130,7 +118,7 @@ def test_make_way_moves_try_as_many_poses_in_a_crowded_room_and_never_cost_reach
     assert all(crowded(p) for p in dense) and not any(crowded(p) for p in list(SEEN.values())[:40])
     assert _polished_within_allowance(dense) and tries and set(tries) == {MAKE_WAY_POSES}
     tries.clear()
-    polish(_finished(SEEN["seen-00002"]))
+    polish(finished(SEEN["seen-00002"]))
     assert set(tries) == {MAKE_WAY_POSES}
 
 
@@ -139,7 +127,7 @@ def test_an_object_in_a_front_clearance_is_in_the_way_of_a_make_way_move():
     make-way move that only counted overlapping bodies could never clear such a pose."""
     found = 0
     for plan in [r.plan for r in load_dataset("dense")[:6]]:
-        ep = _finished(plan)
+        ep = finished(plan)
         for p in ep.placed:
             obj, others = ep.problem.plan.object(p.id), [q for q in ep.placed if q is not p]
             cands, body = ep.scorer.bodies(obj)
@@ -157,11 +145,11 @@ def test_a_move_is_judged_by_the_exact_energy_not_by_the_fast_navigation_term(da
     """On these plans a move judged by the fast navigation term (which misses a way the pose closes) raised the
     exact energy; the pose a move ends on is now scored with the free space labelled exactly."""
     plan = next(r.plan for r in load_dataset(dataset, "train" if dataset == "seen" else None) if r.plan.id == pid)
-    ep = _finished(plan)
-    _, energy, out = _judged(plan, ep)
+    ep = finished(plan)
+    _, energy, out = judged(plan, ep)
     steps = []
     polish(ep, steps.append)
-    _, new_energy, new_out = _judged(plan, ep)
+    _, new_energy, new_out = judged(plan, ep)
     assert (not steps or _within_allowance(steps, energy, new_energy)) and new_out <= out
 
 
@@ -169,8 +157,8 @@ def test_the_polish_compares_a_move_with_the_exact_energy_of_the_layout_it_start
     """Greedy's last step reports 2.447 on this plan (the fast navigation term sees a way to a task object that the
     free space has not); the layout's exact energy, the polish's baseline, is 3.947."""
     plan = next(r.plan for r in load_dataset("dense") if r.plan.id == "dense-00346")
-    ep = _finished(plan)
-    _, energy, _ = _judged(plan, ep)
+    ep = finished(plan)
+    _, energy, _ = judged(plan, ep)
     assert ep.energy < energy - 1  # the plan is a case where the two differ
     assert Standing(ep).energy == pytest.approx(energy, abs=1e-9)
 
@@ -180,7 +168,7 @@ def test_the_count_over_every_pose_agrees_with_the_count_of_the_layout(pid):
     """`met` over an object's whole grid (its global placement computed once per object) and over some of its
     poses gives, at the pose it stands on, what the layout's own count (`met_among`) gives."""
     plan = SEEN[pid]
-    ep = _finished(plan)
+    ep = finished(plan)
     checked = 0
     for p in ep.placed:
         obj, others = plan.object(p.id), [q for q in ep.placed if q is not p]
@@ -202,7 +190,7 @@ def test_the_poses_that_may_meet_more_are_all_the_poses_that_do():
     from models.placement.polish import _may_gain
     pruned = 0
     for plan in [r.plan for r in load_dataset("unseen_a")[:30]]:
-        ep = _finished(plan)
+        ep = finished(plan)
         for oid in broken(ep):
             obj = plan.object(oid)
             others = [p for p in ep.placed if p.id != oid]
@@ -228,8 +216,8 @@ def test_a_crowded_room_gets_a_second_round_that_meets_more(monkeypatch):
     round_ = polish_module._round
     monkeypatch.setattr(polish_module, "_round", spy)
     plan = next(r.plan for r in load_dataset("dense") if r.plan.id == "dense-00346")
-    ep = _finished(plan)
+    ep = finished(plan)
     assert crowded(plan) and polish(ep)
     assert len(rounds) == 2 and rounds[0] < rounds[1] < met_among(ep, ep.placed, {p.id for p in ep.placed})
     rounds.clear()
-    assert not crowded(SEEN["seen-00002"]) and polish(_finished(SEEN["seen-00002"])) and len(rounds) == 1
+    assert not crowded(SEEN["seen-00002"]) and polish(finished(SEEN["seen-00002"])) and len(rounds) == 1

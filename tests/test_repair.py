@@ -7,22 +7,17 @@ import numpy as np
 from models.datasets import load_dataset
 from models.metrics import scene_metrics
 from models.placement.repair import make_room, restore_access
-from models.placement.greedy import Episode, GreedySolver
+from models.placement.greedy import GreedySolver
+from episode_support import finished
 
 
 def _plan(pid, dataset="seen"):
     return next(r.plan for r in load_dataset(dataset) if r.plan.id == pid)
 
 
-def _finished(plan, fixed=None):
-    ep = Episode(plan, fixed)
-    ep.finish_greedily()
-    return ep
-
-
 def test_unreachable_task_objects_are_made_reachable_and_each_move_is_a_step():
     plan = _plan("seen-00346")  # greedy walls off the garbage can and a side table
-    ep = _finished(plan)
+    ep = finished(plan)
     before = scene_metrics(plan, ep.layout("greedy", 0, 0.0))
     assert ep.reach.unreachable(ep.placed) and before.key_nav < 1
     steps = []
@@ -39,14 +34,14 @@ def test_unreachable_task_objects_are_made_reachable_and_each_move_is_a_step():
 
 def test_a_reachable_layout_and_fixed_objects_are_left_as_they_are():
     plan = _plan("seen-00346")
-    ep = _finished(plan)
+    ep = finished(plan)
     restore_access(ep)
     poses = [(p.id, p.x, p.z, p.rotation) for p in ep.placed]
     assert restore_access(ep) == [] and [(p.id, p.x, p.z, p.rotation) for p in ep.placed] == poses
     # with every object fixed where greedy put it, nothing may move, even though access is blocked
-    walled = _finished(plan)
+    walled = finished(plan)
     fixed = {p.id: (p.x, p.z, p.rotation) for p in walled.placed}
-    again = _finished(plan, fixed)
+    again = finished(plan, fixed)
     assert again.reach.unreachable(again.placed) and restore_access(again) == []
 
 
@@ -72,7 +67,7 @@ def test_the_reach_guard_keeps_the_task_objects_reachable_while_placing_and_says
 
 def test_an_object_left_out_is_placed_after_the_objects_in_its_way_are_placed_again():
     plan = _plan("dense-00389", "dense")  # greedy finds no room for one object of this crowded bedroom
-    ep = _finished(plan)
+    ep = finished(plan)
     left_out = set(ep.failed)
     before = scene_metrics(plan, ep.layout("greedy", 0, 0.0))
     steps = []
@@ -85,8 +80,8 @@ def test_an_object_left_out_is_placed_after_the_objects_in_its_way_are_placed_ag
     assert steps[0].why == f"left out at first: room made by moving {', '.join(movers)}"
     assert all(s.why == f"making way for {steps[0].object_id}" for s in steps[1:])
     # the objects it moved may not be fixed ones: with them fixed, nothing moves and the object stays out
-    fixed = {p.id: (p.x, p.z, p.rotation) for p in _finished(plan).placed}
-    again = _finished(plan, fixed)
+    fixed = {p.id: (p.x, p.z, p.rotation) for p in finished(plan).placed}
+    again = finished(plan, fixed)
     assert make_room(again) == [] and set(again.failed) == left_out
 
 
@@ -104,7 +99,7 @@ def test_a_blocker_far_from_the_walled_off_object_is_the_one_moved():
         "id": "walled", "constraints": "", "room": {"type": "kitchen", "width": 4.0, "depth": 3.0, "doors": [
             {"wall": "east", "center": 1.5, "width": 0.9}]},
         "objects": [{"id": i, "type": t, "size": {"x": w, "y": 1, "z": d}, "role": r} for i, t, w, d, r, _ in objects]})
-    ep = _finished(plan, {i: pose for i, *_, pose in objects})
+    ep = finished(plan, {i: pose for i, *_, pose in objects})
     ep.problem.fixed = {"fridge-0": ep.problem.fixed["fridge-0"]}  # the others are the placer's to move
     assert ep.reach.unreachable(ep.placed) == ["fridge-0"]
     free = [p for p in ep.placed if p.id != "fridge-0"]

@@ -159,10 +159,6 @@ def regroup(ep: Episode, observer: StepObserver | None = None) -> list[str]:
         return moved
     for oid in left[:TRIES]:
         move = group_move(ep, now, oid)
-        if move is None:
-            continue
-        now.moved(move)
-        moved += [s.object_id for s in move.steps]
-        for step in move.steps if observer is not None else ():
-            observer(step)
+        if move is not None:
+            now.take(move, moved, observer)
     return moved

@@ -239,6 +239,13 @@ class Standing:
         self.energy, self.out, self._next_setup = move.energy, move.out, move.setup
         self.__dict__.pop("setup", None)
 
+    def take(self, move: Move, moved: list[str], observer: StepObserver | None) -> None:
+        """`move` made: the layout follows it, its objects join `moved` and the observer sees each of its steps."""
+        self.moved(move)
+        moved += [s.object_id for s in move.steps]
+        for step in move.steps if observer is not None else ():
+            observer(step)
+
 
 def free_move(ep: Episode, now: Standing, obj, others: list[PlacedObject], cands: np.ndarray, legal: np.ndarray,
               gain: np.ndarray, setup: CandidateEnergy, why: Callable[[PlacedObject], str],
@@ -358,10 +365,6 @@ def _round(ep: Episode, observer: StepObserver | None, moved: list[str], tried: 
             continue
         tried[oid] = len(moved)
         move = _relocation(ep, now, oid)
-        if move is None:
-            continue
-        now.moved(move)
-        moved += [s.object_id for s in move.steps]
-        for step in move.steps if observer is not None else ():
-            observer(step)
+        if move is not None:
+            now.take(move, moved, observer)
     return len(moved) > before
