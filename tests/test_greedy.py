@@ -97,3 +97,18 @@ def test_candidate_grid_is_the_meshgrid_of_unique_axes():
     for _ in range(20000):  # odd sizes and rooms, where the last grid step meets the far wall
         half, length = round(rng.uniform(0.05, 2.0), int(rng.integers(1, 6))), round(rng.uniform(0.5, 8), int(rng.integers(1, 6)))
         assert np.array_equal(scorer._axis(half, length), axis(scorer.step, half, length))
+
+
+def test_a_solve_runs_blas_on_one_thread_and_puts_the_setting_back():
+    from threadpoolctl import threadpool_info, threadpool_limits
+
+    def blas_threads():
+        return {lib["num_threads"] for lib in threadpool_info() if lib["user_api"] == "blas"}
+
+    seen = []
+    with threadpool_limits(limits=2, user_api="blas"):  # as numpy has it on a 2-core machine, whatever this one is
+        assert blas_threads() == {2}
+        for name in ("greedy", "plan2place", "dfs"):
+            get_solver(name).solve(_plans(1)[0], seed=0, observer=lambda step: seen.append(blas_threads()))
+        assert blas_threads() == {2}
+    assert seen and all(s == {1} for s in seen)

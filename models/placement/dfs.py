@@ -13,6 +13,7 @@ import time
 
 import numpy as np
 
+from models.placement import blas
 from models.placement.base import Fixed, PlacementStep, StepObserver
 from models.placement.candidates import CandidateScorer, PlacedObject
 from models.placement.problem import PlacementProblem, time_budget
@@ -33,6 +34,11 @@ class DFSSolver:
 
     def solve(self, plan: ConstraintPlan, seed: int = 0, time_budget_s: float | None = None,
               observer: StepObserver | None = None, fixed: Fixed | None = None) -> Layout:
+        with blas.one_blas_thread():  # as the step-wise placers (models.placement.blas)
+            return self._search(plan, seed, time_budget_s, observer, fixed)
+
+    def _search(self, plan: ConstraintPlan, seed: int, time_budget_s: float | None, observer: StepObserver | None,
+                fixed: Fixed | None) -> Layout:
         start = time.perf_counter()
         deadline = start + time_budget(plan, time_budget_s if time_budget_s is not None else self.time_budget_s)
         problem = PlacementProblem.from_plan(plan, fixed)

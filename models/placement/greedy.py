@@ -19,6 +19,7 @@ import numpy as np
 from models.energy.vectorised import CandidateEnergy
 from models.energy.weights import WEIGHTS
 from models.placement.base import Fixed, PlacementStep, StepObserver
+from models.placement import blas
 from models.geometry import SweptBoxes
 from models.placement.candidates import OVERLAP_TOL, CandidateScorer, PlacedObject, Shared
 from models.placement.problem import PlacementProblem
@@ -254,16 +255,17 @@ def place_stepwise(plan: ConstraintPlan, rng: np.random.Generator, choose: Choos
     """One episode of a step-wise placer (greedy, look-ahead, Plan2Place): at each step with a legal candidate,
     `choose(episode, options, rng)` gives (pick among the feasible candidates, probabilities for the heat-map, the
     step's reason); each step is observed; then, with `repair`, the repairs."""
-    ep = Episode(plan, fixed)
-    while not ep.done:
-        opts = ep.options()
-        pick, probs, why = None, np.zeros(0), ""
-        if len(opts.feasible):
-            pick, probs, why = choose(ep, opts, rng)
-        ep.apply(opts, pick)
-        if observer is not None:
-            observer(ep.step_record(opts, pick, probs, why))
-    if repair:
-        from models.placement.repair import repair as repair_layout  # it builds on this module's Episode
-        repair_layout(ep, observer)
+    with blas.one_blas_thread():
+        ep = Episode(plan, fixed)
+        while not ep.done:
+            opts = ep.options()
+            pick, probs, why = None, np.zeros(0), ""
+            if len(opts.feasible):
+                pick, probs, why = choose(ep, opts, rng)
+            ep.apply(opts, pick)
+            if observer is not None:
+                observer(ep.step_record(opts, pick, probs, why))
+        if repair:
+            from models.placement.repair import repair as repair_layout  # it builds on this module's Episode
+            repair_layout(ep, observer)
     return ep

@@ -14,7 +14,7 @@ def wrap(mod, name):
     def g(*a, **k):
         t = time.perf_counter(); r = f(*a, **k); tot[name] = tot.get(name, 0) + time.perf_counter() - t; return r
     setattr(mod, name, g)
-for name in ("make_room", "restore_access", "polish", "keep_companions"):
+for name in ("make_room", "restore_access", "polish", "regroup", "keep_companions"):
     wrap(R, name)
 objs = 0; t0 = time.perf_counter()
 pr = cProfile.Profile() if "--prof" in sys.argv else None
