@@ -112,3 +112,21 @@ def test_a_solve_runs_blas_on_one_thread_and_puts_the_setting_back():
             get_solver(name).solve(_plans(1)[0], seed=0, observer=lambda step: seen.append(blas_threads()))
         assert blas_threads() == {2}
     assert seen and all(s == {1} for s in seen)
+
+
+def test_overlapping_solves_share_the_one_thread_limit_and_the_last_puts_numpys_setting_back():
+    from threadpoolctl import threadpool_info, threadpool_limits
+
+    from models.placement.blas import one_blas_thread
+
+    def blas_threads():
+        return {lib["num_threads"] for lib in threadpool_info() if lib["user_api"] == "blas"}
+
+    with threadpool_limits(limits=2, user_api="blas"):
+        first, second = one_blas_thread(), one_blas_thread()  # e.g. two studio tabs solving at once
+        first.__enter__()
+        second.__enter__()
+        first.__exit__(None, None, None)
+        assert blas_threads() == {1}  # the second solve is still under way
+        second.__exit__(None, None, None)
+        assert blas_threads() == {2}
