@@ -254,7 +254,8 @@ def place_stepwise(plan: ConstraintPlan, rng: np.random.Generator, choose: Choos
                    observer: StepObserver | None = None, repair: bool = True) -> Episode:
     """One episode of a step-wise placer (greedy, look-ahead, Plan2Place): at each step with a legal candidate,
     `choose(episode, options, rng)` gives (pick among the feasible candidates, probabilities for the heat-map, the
-    step's reason); each step is observed; then, with `repair`, the repairs."""
+    step's reason); each step is observed; then, with `repair`, the repairs. All of it on one BLAS thread
+    (models.placement.blas)."""
     with blas.one_blas_thread():
         ep = Episode(plan, fixed)
         while not ep.done:
