@@ -114,19 +114,39 @@ def test_a_solve_runs_blas_on_one_thread_and_puts_the_setting_back():
     assert seen and all(s == {1} for s in seen)
 
 
-def test_overlapping_solves_share_the_one_thread_limit_and_the_last_puts_numpys_setting_back():
-    from threadpoolctl import threadpool_info, threadpool_limits
+def test_solves_in_worker_threads_overlapping_share_the_one_thread_limit_and_the_last_puts_numpys_setting_back():
+    """As the studio solves: in worker threads, maybe two at once, after the main thread has solved too."""
+    import threading
 
-    from models.placement.blas import one_blas_thread
+    from threadpoolctl import threadpool_info, threadpool_limits
 
     def blas_threads():
         return {lib["num_threads"] for lib in threadpool_info() if lib["user_api"] == "blas"}
 
-    with threadpool_limits(limits=2, user_api="blas"):
-        first, second = one_blas_thread(), one_blas_thread()  # e.g. two studio tabs solving at once
-        first.__enter__()
-        second.__enter__()
-        first.__exit__(None, None, None)
-        assert blas_threads() == {1}  # the second solve is still under way
-        second.__exit__(None, None, None)
+    plan, seen = _plans(1)[0], {}
+
+    def solve(name, started=None, go_on=None):
+        def observe(step):
+            seen.setdefault(name, set()).update(blas_threads())
+            if started is not None:  # hold this solve open until the other has begun and ended
+                started.set()
+                go_on.wait(timeout=60)
+        get_solver("greedy").solve(plan, seed=0, observer=observe)
+
+    numpys = threadpool_limits(limits=2, user_api="blas")  # as on 2 cores; this thread now holds threadpoolctl's control
+    try:
+        get_solver("greedy").solve(plan, seed=0)  # the main thread solves too
+        started, go_on = threading.Event(), threading.Event()
+        first = threading.Thread(target=solve, args=("first", started, go_on))
+        first.start()
+        assert started.wait(timeout=60)
+        second = threading.Thread(target=solve, args=("second",))  # begins and ends while the first is under way
+        second.start()
+        second.join()
+        assert blas_threads() == {1}  # the first solve is still under way
+        go_on.set()
+        first.join()
+        assert seen == {"first": {1}, "second": {1}}
         assert blas_threads() == {2}
+    finally:
+        numpys.restore_original_limits()

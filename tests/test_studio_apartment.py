@@ -7,8 +7,8 @@ import re
 from pathlib import Path
 
 import pytest
-from studio_support import (SCREENSHOTS, WAIT, browser, choose, enter, field, open_studio, session_of,  # noqa: F401
-                            studio)
+from studio_support import (SCREENSHOTS, WAIT, browser, choose, close_tabs, enter, field, open_studio,  # noqa: F401
+                            session_of, studio)
 
 pytest.importorskip("playwright")
 

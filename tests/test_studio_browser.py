@@ -8,8 +8,9 @@ import re
 from pathlib import Path
 
 import pytest
-from studio_support import (  # noqa: F401 (browser and studio are fixtures)
-    SCREENSHOTS, WAIT, browser, choose, enter, field, generate, object_xy, open_studio, session_of, settle, studio)
+from studio_support import (  # noqa: F401 (browser, close_tabs and studio are fixtures)
+    SCREENSHOTS, WAIT, browser, choose, close_tabs, enter, field, generate, object_xy, open_studio, session_of, settle,
+    studio)
 
 pytest.importorskip("playwright.sync_api")
 

@@ -12,8 +12,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 from PIL import Image
-from studio_support import (  # noqa: F401 (browser and studio are fixtures)
-    WAIT, browser, choose, enter, field, generate, object_xy, open_studio, screen_xy, session_of, settle, studio, wait_until)
+from studio_support import (  # noqa: F401 (browser, close_tabs and studio are fixtures)
+    WAIT, browser, choose, close_tabs, enter, field, generate, object_xy, open_studio, screen_xy, session_of, settle,
+    studio, wait_until)
 
 from frontend.camera import PANEL_PX, room_points
 from models.exports.procthor_house import to_house

@@ -23,6 +23,14 @@ def _controller():
     return ThreadpoolController()
 
 
+def _any_thread_may_set() -> None:
+    """threadpoolctl lets only one Python thread at a time change OpenBLAS's process-wide thread count (the first
+    that did, while it lives) and silently ignores the others; the studio solves in worker threads. The solves under
+    way are counted here, under a lock, so the thread that changes the count may take that right."""
+    from threadpoolctl import OpenBLASController
+    OpenBLASController.clear_controlling_thread(force=True)
+
+
 class _OneThread:
     """The limit shared by every solve under way, nested or in other threads: the first in sets it, the last out
     puts numpy's setting back."""
@@ -33,6 +41,7 @@ class _OneThread:
     def __enter__(self) -> None:
         with self._lock:
             if not self._inside:
+                _any_thread_may_set()
                 self._limiter = _controller().limit(limits=1, user_api="blas")
             self._inside += 1
 
@@ -40,7 +49,9 @@ class _OneThread:
         with self._lock:
             self._inside -= 1
             if not self._inside:
+                _any_thread_may_set()
                 self._limiter.restore_original_limits()
+                _any_thread_may_set()  # and after it, for whatever else in the process limits threads
 
 
 _ONE_THREAD = _OneThread()
