@@ -125,27 +125,29 @@ def test_solves_in_worker_threads_overlapping_share_the_one_thread_limit_and_the
 
     plan, seen = _plans(1)[0], {}
 
-    def solve(name, started=None, go_on=None):
+    def solve(name, started, go_on):
         def observe(step):
             seen.setdefault(name, set()).update(blas_threads())
-            if started is not None:  # hold this solve open until the other has begun and ended
-                started.set()
-                go_on.wait(timeout=60)
+            started.set()
+            assert go_on.wait(timeout=60)  # held open until the test lets it go on
         get_solver("greedy").solve(plan, seed=0, observer=observe)
+
+    def begin(name):
+        started, go_on = threading.Event(), threading.Event()
+        thread = threading.Thread(target=solve, args=(name, started, go_on))
+        thread.start()
+        assert started.wait(timeout=60)
+        return thread, go_on
 
     numpys = threadpool_limits(limits=2, user_api="blas")  # as on 2 cores; this thread now holds threadpoolctl's control
     try:
         get_solver("greedy").solve(plan, seed=0)  # the main thread solves too
-        started, go_on = threading.Event(), threading.Event()
-        first = threading.Thread(target=solve, args=("first", started, go_on))
-        first.start()
-        assert started.wait(timeout=60)
-        second = threading.Thread(target=solve, args=("second",))  # begins and ends while the first is under way
-        second.start()
+        (first, go_first), (second, go_second) = begin("first"), begin("second")
+        go_first.set()
+        first.join()  # the first ends while the second is under way
+        assert blas_threads() == {1}
+        go_second.set()
         second.join()
-        assert blas_threads() == {1}  # the first solve is still under way
-        go_on.set()
-        first.join()
         assert seen == {"first": {1}, "second": {1}}
         assert blas_threads() == {2}
     finally:
