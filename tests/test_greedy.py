@@ -100,10 +100,7 @@ def test_candidate_grid_is_the_meshgrid_of_unique_axes():
 
 
 def test_a_solve_runs_blas_on_one_thread_and_puts_the_setting_back():
-    from threadpoolctl import threadpool_info, threadpool_limits
-
-    def blas_threads():
-        return {lib["num_threads"] for lib in threadpool_info() if lib["user_api"] == "blas"}
+    from threadpoolctl import threadpool_limits
 
     seen = []
     with threadpool_limits(limits=2, user_api="blas"):  # as numpy has it on a 2-core machine, whatever this one is
@@ -118,10 +115,7 @@ def test_solves_in_worker_threads_overlapping_share_the_one_thread_limit_and_the
     """As the studio solves: in worker threads, maybe two at once, after the main thread has solved too."""
     import threading
 
-    from threadpoolctl import threadpool_info, threadpool_limits
-
-    def blas_threads():
-        return {lib["num_threads"] for lib in threadpool_info() if lib["user_api"] == "blas"}
+    from threadpoolctl import threadpool_limits
 
     plan, seen = _plans(1)[0], {}
 
@@ -152,3 +146,9 @@ def test_solves_in_worker_threads_overlapping_share_the_one_thread_limit_and_the
         assert blas_threads() == {2}
     finally:
         numpys.restore_original_limits()
+
+
+def blas_threads() -> set[int]:
+    """The thread counts of the BLAS libraries loaded in this process."""
+    from threadpoolctl import threadpool_info
+    return {lib["num_threads"] for lib in threadpool_info() if lib["user_api"] == "blas"}
