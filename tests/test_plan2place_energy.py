@@ -169,22 +169,23 @@ def test_the_energies_a_step_remembers_are_those_its_pose_is_given_afresh():
 
 def test_the_floor_never_exceeds_the_energy_of_a_layout_that_completes_it():
     """`CandidateEnergy.floor`: with some objects taken away, a lower bound on the energy of the whole layout (the
-    polish rejects a make-way move by it); with none taken away, the energy without the navigation term; an
-    object the layout leaves out is charged."""
+    polish rejects a make-way move by it); with none taken away, the energy itself; an object the layout leaves
+    out is charged, and so is a task object the robot cannot reach with those objects alone."""
     from models.energy.weights import WEIGHTS
     recs = load_dataset("dense")
     rng = np.random.default_rng(2)
-    tight = 0
+    tight = cut_off = 0
     for plan in [r.plan for r in recs[:12]]:
         ep = Episode(plan)
         ep.finish_greedily()
         full = CandidateEnergy(ep.problem, ep.placed)
         terms = full.terms()
-        assert abs(full.floor(full) - (terms["total"] - WEIGHTS["nav"] * terms["nav"])) < 1e-9
+        assert abs(full.floor(full) - terms["total"]) < 1e-9
         assert full.floor(full) >= WEIGHTS["missing"] * len(ep.failed) / len(plan.objects) - 1e-12
         for _ in range(5):
             gone = rng.choice(len(ep.placed), size=int(rng.integers(1, 4)), replace=False)
             part = CandidateEnergy(ep.problem, [p for i, p in enumerate(ep.placed) if i not in gone])
             assert part.floor(full) <= terms["total"] + 1e-12
-            tight += part.floor(full) > terms["total"] - WEIGHTS["nav"] * terms["nav"] - 0.05
-    assert tight > 0  # the bound is not vacuous
+            tight += part.floor(full) > terms["total"] - 0.05
+            cut_off += part._cut_off() > 0
+    assert tight > 0 and cut_off > 0  # the bound is not vacuous; its navigation part is tried

@@ -308,7 +308,7 @@ class CandidateEnergy:
         missing = [o.id for o in self.problem.plan.objects if o.id not in done]
         targets = [p for p in self.placed if p.id in self.task]
         n_targets = len(targets) + sum(oid in self.task for oid in missing)
-        reached = sum(bool((self.reach & nav.in_box_mask(self.grid, self._access_strip(p))).any()) for p in targets)
+        reached = len(targets) - self._cut_off()
         terms = {"rel": math.log1p(self.rel_sum / max(self.rel_n, 1)), "collision": math.log1p(self.collision_sum),
                  "oob": math.log1p(self.oob_sum), "nav": (1 - reached / n_targets) ** 2 if n_targets else 0.0,
                  "aff": self.aff_sum / max(len(self.zones), 1), "missing": len(missing) / max(self.n_objects, 1)}
@@ -323,16 +323,25 @@ class CandidateEnergy:
         for head, tail, values in shared.pieces:
             self._pairs[(*head, *pose, *tail)] = float(values[k])
 
+    def _cut_off(self) -> int:
+        """Placed task objects whose access strip holds no cell the robot reaches."""
+        return sum(not (self.reach & nav.in_box_mask(self.grid, self._access_strip(p))).any()
+                   for p in self.placed if p.id in self.task)
+
     def floor(self, complete: CandidateEnergy) -> float:
         """A lower bound on the energy of every layout that adds to these objects the others of `complete` (a
         set-up of the whole layout, nothing pending), wherever they go: the relational, collision, out-of-bounds
         and affordance sums only grow as objects are added, the counts they are divided by are `complete`'s, and
-        the navigation term is at least 0. What the polish rejects a make-way move by, before the objects that
-        make way are placed again."""
-        missing = sum(o.id not in complete.poses for o in self.problem.plan.objects) / max(self.n_objects, 1)
+        a task object cut off from the robot here (or left out of `complete`) stays so, for added objects only
+        shrink the free space the robot reaches. What the polish rejects a make-way move by, before the objects
+        that make way are placed again."""
+        left_out = [o.id for o in self.problem.plan.objects if o.id not in complete.poses]
+        cut_off = self._cut_off() + sum(oid in self.task for oid in left_out)
         return (WEIGHTS["rel"] * math.log1p(self.rel_sum / max(complete.rel_n, 1))
                 + WEIGHTS["collision"] * math.log1p(self.collision_sum) + WEIGHTS["oob"] * math.log1p(self.oob_sum)
-                + WEIGHTS["aff"] * self.aff_sum / max(len(complete.zones), 1) + WEIGHTS["missing"] * missing)
+                + WEIGHTS["aff"] * self.aff_sum / max(len(complete.zones), 1)
+                + WEIGHTS["nav"] * (cut_off / max(len(self.task), 1)) ** 2
+                + WEIGHTS["missing"] * len(left_out) / max(self.n_objects, 1))
 
     # ---- per candidate -----------------------------------------------------------------------------
 

@@ -140,7 +140,7 @@ def group_move(ep: Episode, now: Standing, oid: str) -> Move | None:
     start = now.setup  # the energy set-up of `rest`, the group pending but for the first of `order`
     for g in group:
         start = start.without(g, pending=order[1:])
-    again = _place_again(ep, order, start, rest, memo, TOGETHER)
+    again = _place_again(ep, order, start, rest, memo, TOGETHER, now.within)
     if again is None:
         return None
     placed, steps, final_setup = again

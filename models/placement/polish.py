@@ -9,9 +9,9 @@ layout's energy rises by at most `ALLOWANCE` and no more task objects are out of
 - Else a make-way move: a pose that meets more, where at most `moves.MAX_BLOCKERS` objects stand in the way,
   by their bodies or by a front clearance (the pose's or theirs; `MAKE_WAY_POSES` such poses,
   models.placement.moves.displacements); those are placed again, each where it meets the most constraints, then
-  at its lowest energy. A cheap screen (the same placing by constraints alone) and a floor of the energy
-  (`CandidateEnergy.floor`) drop the poses that cannot meet more, or cannot stay within the allowance, before the
-  objects making way are placed again.
+  at its lowest energy. A cheap screen (the same placing by constraints alone) drops the poses that cannot meet
+  more before any energy is computed, and a floor of the energy (`CandidateEnergy.floor`) those that cannot stay
+  within the allowance, before each of the objects making way is placed again.
 
 In a `crowded` room, where moves free and fill floor for one another, the objects still broken get a second round
 when the first moved anything (`second-round/`). Fixed objects never move; each move is a placement step; the time
@@ -155,14 +155,17 @@ def _legal_among(ep: Episode, oid: str, placed: list[PlacedObject], memo: dict
 
 
 def _place_again(ep: Episode, movers: list[str], energy: CandidateEnergy, placed: list[PlacedObject], memo: dict,
-                 why: str):
+                 why: str, within: Callable[[CandidateEnergy], bool]):
     """(`placed` with `movers` placed again in order, their steps, how to make the energy set-up of the result):
     each at its legal pose meeting the most constraints, then of lowest energy (the later ones pending; `energy`:
-    the set-up of `placed` with `movers[1:]` pending; `why`: the steps' reason); None if one has no legal pose. A
+    the set-up of `placed` with `movers[1:]` pending; `why`: the steps' reason); None if one has no legal pose, or
+    if before a mover is placed the set-up fails `within` (whether its energy's floor leaves the move a chance). A
     step shows the poses meeting the most, among which the energy chose. The last set-up is made only if asked
     for: most moves are refused on the last step's energy."""
     placed, steps = list(placed), []
     for k, oid in enumerate(movers):
+        if not within(energy):
+            return None
         obj = ep.problem.plan.object(oid)
         cands, legal, most = _legal_among(ep, oid, placed, memo)
         if not len(legal):
@@ -232,6 +235,11 @@ class Standing:
         if [_key(p) for p in last.placed] == [_key(p) for p in self.ep.placed]:
             return last
         return CandidateEnergy(self.ep.problem, self.ep.placed)
+
+    def within(self, energy: CandidateEnergy) -> bool:
+        """Can the objects of `energy`'s set-up, completed by the others of this layout wherever they go, stay within
+        the allowance? Judged by its floor (`CandidateEnergy.floor`; TOL twice: the float sums' order)."""
+        return energy.floor(self.setup) <= self.energy + ALLOWANCE + 2 * TOL
 
     def moved(self, move: Move) -> None:
         self.ep.placed, self.ep.energy = move.placed, move.energy
@@ -327,10 +335,8 @@ def _relocation(ep: Episode, now: Standing, oid: str) -> Move | None:
         base = setup()
         for b in blockers:
             base = base.without(b)
-        start = base.after(pose, pending=blockers[1:])
-        if start.floor(now.setup) > now.energy + ALLOWANCE + 2 * TOL:  # no placing of the blockers stays within (TOL
-            continue  # twice: the float sums' order)
-        again = _place_again(ep, blockers, start, [*placed, pose], memo, f"making way for {oid}")
+        again = _place_again(ep, blockers, base.after(pose, pending=blockers[1:]), [*placed, pose], memo,
+                             f"making way for {oid}", now.within)
         if again is None:
             continue
         placed, steps, final_setup = again

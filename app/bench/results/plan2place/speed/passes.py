@@ -25,4 +25,4 @@ for seed in range(2):
 if pr: pr.disable()
 T = time.perf_counter() - t0
 print(ds, "ms/obj total", round(1000*T/objs, 2), {k: round(1000*v/objs, 2) for k, v in tot.items()})
-if pr: pstats.Stats(pr).sort_stats("cumulative").print_stats(*(sys.argv[sys.argv.index("--prof") + 1:] or [45]))
+if pr: pstats.Stats(pr).sort_stats("cumulative").print_stats(*[int(a) if a.isdigit() else a for a in sys.argv[sys.argv.index("--prof") + 1:]] or [45])
