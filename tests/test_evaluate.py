@@ -74,3 +74,18 @@ def test_middle():
 def test_a_met_constraint_has_zero_energy(name, pose):
     ok, energy = rel(name, *pose)
     assert ok and energy == 0
+
+
+def test_a_gap_off_a_threshold_in_the_last_bits_meets_it_and_a_real_miss_does_not():
+    """The judge measures gaps between polygons (rotated by sin and cos), the placers between boxes: a chair at
+    the 0.6 m of `around` came out 0.6000000000000002 in the judge and 0.6 in the polish, which counted it met
+    and the metric not (seen-00022)."""
+    import numpy as np
+    from models.constraints.evaluate import AROUND_MAX_GAP, FLOAT_TOL, NEAR_MAX
+
+    chair = Poses.one(5, 6.6 + 0.25, 180, 0.5, 0.5)  # facing the table, 0.6 m beyond its front
+    for gap, met in [(AROUND_MAX_GAP, True), (np.nextafter(AROUND_MAX_GAP, 1), True),
+                     (AROUND_MAX_GAP + 100 * FLOAT_TOL, False)]:
+        assert bool(relation("around", chair, B, gap=np.array([gap]))[1][0]) == met, gap
+    assert bool(relation("near", chair, B, gap=np.array([NEAR_MAX + 2e-16]))[1][0])
+    assert not relation("near", chair, B, gap=np.array([NEAR_MAX + 1e-6]))[1][0]

@@ -25,6 +25,8 @@ SIDE_MAX_GAP = 0.8
 AROUND_MAX_GAP = 0.6
 FACE_MAX_DEG = 45.0
 ALIGN_TOL = 0.1
+FLOAT_TOL = 1e-9  # a length or angle this close to a threshold meets it: the judge's polygon gaps and the placers'
+# box gaps, or an angle from arccos, differ from the exact value in the last bits
 
 
 @dataclass(frozen=True)
@@ -98,10 +100,10 @@ def relation(name: str, a: Poses, b: Poses, gap: np.ndarray | None = None) -> tu
 
     if name == "near":
         g = _gap(a, b)
-        return _relu(g - NEAR_MAX), g <= NEAR_MAX
+        return _relu(g - NEAR_MAX), g <= NEAR_MAX + FLOAT_TOL
     if name == "far":
         g = _gap(a, b)
-        return _relu(FAR_MIN - g), g >= FAR_MIN
+        return _relu(FAR_MIN - g), g >= FAR_MIN - FLOAT_TOL
     if name in ("in front of", "behind"):
         ahead, lateral = _frame(a, b)
         if name == "behind":
@@ -109,7 +111,7 @@ def relation(name: str, a: Poses, b: Poses, gap: np.ndarray | None = None) -> tu
         g = _gap(a, b)
         lat_max = b.width / 2 + LATERAL_SLACK
         energy = _relu(b.depth / 2 - ahead) + _relu(np.abs(lateral) - lat_max) + _relu(g - FRONT_MAX_GAP)
-        ok = (ahead > b.depth / 2) & (np.abs(lateral) <= lat_max) & (g <= FRONT_MAX_GAP)
+        ok = (ahead > b.depth / 2) & (np.abs(lateral) <= lat_max + FLOAT_TOL) & (g <= FRONT_MAX_GAP + FLOAT_TOL)
         return energy, ok
     if name in ("side of", "left of", "right of"):
         ahead, lateral = _frame(a, b)
@@ -117,22 +119,22 @@ def relation(name: str, a: Poses, b: Poses, gap: np.ndarray | None = None) -> tu
         g = _gap(a, b)
         ahead_max = b.depth / 2 + LATERAL_SLACK
         energy = _relu(b.width / 2 - side) + _relu(np.abs(ahead) - ahead_max) + _relu(g - SIDE_MAX_GAP)
-        ok = (side > b.width / 2) & (np.abs(ahead) <= ahead_max) & (g <= SIDE_MAX_GAP)
+        ok = (side > b.width / 2) & (np.abs(ahead) <= ahead_max + FLOAT_TOL) & (g <= SIDE_MAX_GAP + FLOAT_TOL)
         return energy, ok
     if name == "face to":
         fx, fz = a.fronts()
         angle = _angle_between(fx, fz, b.x - a.x, b.z - a.z)
-        return _relu(angle - FACE_MAX_DEG) / 90.0, angle <= FACE_MAX_DEG
+        return _relu(angle - FACE_MAX_DEG) / 90.0, angle <= FACE_MAX_DEG + FLOAT_TOL
     if name == "face same as":
         diff = np.abs((a.rotation - b.rotation + 180.0) % 360.0 - 180.0)
-        return _relu(diff - FACE_MAX_DEG) / 90.0, diff <= FACE_MAX_DEG
+        return _relu(diff - FACE_MAX_DEG) / 90.0, diff <= FACE_MAX_DEG + FLOAT_TOL
     if name == "around":
         g = _gap(a, b)
         face_e, face_ok = relation("face to", a, b)
-        return _relu(g - AROUND_MAX_GAP) + face_e, (g <= AROUND_MAX_GAP) & face_ok
+        return _relu(g - AROUND_MAX_GAP) + face_e, (g <= AROUND_MAX_GAP + FLOAT_TOL) & face_ok
     if name == "center aligned":
         off = np.minimum(np.abs(a.x - b.x), np.abs(a.z - b.z))
-        return _relu(off - ALIGN_TOL), off <= ALIGN_TOL
+        return _relu(off - ALIGN_TOL), off <= ALIGN_TOL + FLOAT_TOL
     raise ValueError(f"unknown constraint {name!r}")
 
 
@@ -157,7 +159,7 @@ def placement(name: str, a: Poses, room_width: float, room_depth: float,
     c = clearance if clearance is not None else wall_clearance(a, room_width, room_depth)
     if name == "edge":
         d = back_wall_distance(a, room_width, room_depth)
-        return _relu(np.abs(d) - EDGE_TOL), (np.abs(d) <= EDGE_TOL + 1e-9) & (c >= -1e-6)
+        return _relu(np.abs(d) - EDGE_TOL), (np.abs(d) <= EDGE_TOL + FLOAT_TOL) & (c >= -1e-6)
     if name == "middle":
-        return _relu(MIDDLE_MIN - c), c >= MIDDLE_MIN - 1e-9
+        return _relu(MIDDLE_MIN - c), c >= MIDDLE_MIN - FLOAT_TOL
     raise ValueError(f"unknown placement {name!r}")

@@ -25,6 +25,7 @@ from models.placement.candidates import OVERLAP_TOL, CandidateScorer, PlacedObje
 from models.placement.problem import PlacementProblem
 from models.placement.reach import Reach
 from models.placement.result import make_layout
+from models.placement.ties import steady
 from models.values import ConstraintPlan, Layout, PlanObject
 
 NO_ROOM = "no collision-free position left in the room"
@@ -177,7 +178,7 @@ class Episode:
         """Place the objects still to come at their lowest immediate energy; the final energy."""
         while not self.done:
             opts = self.options()
-            self.apply(opts, int(np.argmin(opts.terms["total"])) if len(opts.feasible) else None)
+            self.apply(opts, int(np.argmin(steady(opts.terms["total"]))) if len(opts.feasible) else None)
         return self.energy
 
     def judge(self, opts: Options, picks: np.ndarray) -> np.ndarray:

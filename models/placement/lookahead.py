@@ -19,6 +19,7 @@ import numpy as np
 from models.placement.base import Fixed, StepObserver
 from models.placement.greedy import Episode, Options, place_stepwise, tie_broken
 from models.placement.problem import time_budget
+from models.placement.ties import steady
 from models.values import ConstraintPlan, Layout
 
 LOOKAHEAD_K = 4  # candidates judged per step: the oracle measured (app/bench/results/plan2place/lookahead-bound)
@@ -44,7 +45,7 @@ class LookaheadSolver:
             k = 1 if time.perf_counter() > deadline else self.k
             judged = ep.first_kept(opts, np.argsort(tie_broken(opts, rng), kind="stable"), k)
             finals = ep.judge(opts, judged) if len(judged) > 1 else np.zeros(1)
-            best = int(np.argmin(finals))
+            best = int(np.argmin(steady(finals)))
             probs = np.zeros(len(opts.feasible))
             probs[judged] = np.exp(-(finals - finals.min()) / HEAT)
             return int(judged[best]), probs / probs.sum(), BEST_LATER if best else ""

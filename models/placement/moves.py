@@ -14,6 +14,7 @@ from models.geometry import SweptBoxes
 from models.placement.base import PlacementStep
 from models.placement.candidates import OVERLAP_TOL, PlacedObject
 from models.placement.greedy import Episode, hard_filter
+from models.placement.ties import steady
 
 MAX_BLOCKERS, TRIES = 3, 5  # displacements
 
@@ -77,7 +78,7 @@ def displacements(ep: Episode, obj, cands: np.ndarray, swept: SweptBoxes, placed
     setup = energy() if energy is not None else CandidateEnergy(ep.problem, placed, pending=())
     terms = setup.score(obj, cands[options])
     cost = terms["total"] - WEIGHTS["collision"] * terms["collision"]
-    order = np.lexsort((cost, count[options], -rank[options]))[:tries]
+    order = np.lexsort((steady(cost), count[options], -rank[options]))[:tries]
     area = {p.id: p.width * p.depth for p in placed}
     return [(int(options[k]), sorted((placed[j].id for j in np.flatnonzero(way[options[k]])), key=lambda i: -area[i]))
             for k in order]

@@ -36,6 +36,7 @@ from models.placement.base import PlacementStep, StepObserver
 from models.placement.candidates import PlacedObject, poses_of
 from models.placement.greedy import Episode, hard_filter
 from models.placement.moves import displacements, legal_poses, move_step
+from models.placement.ties import steady
 from models.values import ConstraintPlan
 
 CHECKS = 20
@@ -172,7 +173,7 @@ def _place_again(ep: Episode, movers: list[str], energy: CandidateEnergy, placed
             return None
         top = legal[most == most.max()]  # only these need an energy
         terms = energy.score(obj, cands[top])
-        best = int(np.argmin(terms["total"]))
+        best = int(np.argmin(steady(terms["total"])))
         if k == len(movers) - 1:  # the move is judged by this step's terms
             terms = exactly(energy, obj, cands, top, terms, best)
         placed.append(ep.scorer.place(obj, *(float(v) for v in cands[top[best]])))
@@ -263,7 +264,7 @@ def free_move(ep: Episode, now: Standing, obj, others: list[PlacedObject], cands
     `allowance`, passes `accept` and leaves no more task objects out of reach; its step says `why(pose)`. None if
     none does."""
     terms = setup.score(obj, cands[legal])
-    for k in np.lexsort((terms["total"], -gain[legal]))[:CHECKS]:
+    for k in np.lexsort((steady(terms["total"]), -gain[legal]))[:CHECKS]:
         if terms["total"][k] > now.energy + allowance + TOL:
             continue
         pose = ep.scorer.place(obj, *(float(v) for v in cands[legal[k]]))

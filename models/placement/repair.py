@@ -29,6 +29,7 @@ from models.placement.groups import regroup
 from models.placement.habits import keep_companions
 from models.placement.moves import displacements, legal_poses, move_step, scored
 from models.placement.polish import Move, Standing, exactly, polish
+from models.placement.ties import steady
 
 ROUNDS, NEAR, CHECKS = 3, 4, 40  # restore_access
 
@@ -45,7 +46,7 @@ def _best_move(ep: Episode, now: Standing, oid: str) -> Move | None:
     setup = now.setup.without(oid)
     terms = setup.score(obj, cands[legal])
     best = None
-    for k in np.argsort(terms["total"], kind="stable")[:CHECKS]:
+    for k in np.argsort(steady(terms["total"]), kind="stable")[:CHECKS]:
         pose = ep.scorer.place(obj, *(float(v) for v in cands[legal[k]]))
         left = now.reach.out_with(others, setup.blocked, pose)
         if left < now.out and (best is None or left < best.out):
@@ -84,7 +85,7 @@ def make_room(ep: Episode, observer: StepObserver | None = None) -> list[str]:
                 m_cands, legal, terms = scored(ep, m_obj, placed, pending=set(blockers[k + 1:]))
                 if not len(legal):
                     break
-                best = int(np.argmin(terms["total"]))
+                best = int(np.argmin(steady(terms["total"])))
                 placed.append(ep.scorer.place(m_obj, *(float(v) for v in m_cands[legal[best]])))
                 steps.append(move_step(mover, placed[-1], m_cands, legal, best, terms, f"making way for {obj.id}"))
             else:
