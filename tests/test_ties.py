@@ -18,7 +18,8 @@ def _one_ulp_off(monkeypatch, seed: int) -> None:
     def off(self, *args, **kwargs):
         terms = score(self, *args, **kwargs)
         way = rng.integers(-1, 2, len(terms["total"]))
-        terms["total"] = np.where(way == 0, terms["total"], np.nextafter(terms["total"], np.where(way > 0, np.inf, -np.inf)))
+        toward = np.where(way > 0, np.inf, -np.inf)
+        terms["total"] = np.where(way == 0, terms["total"], np.nextafter(terms["total"], toward))
         return terms
 
     monkeypatch.setattr(CandidateEnergy, "score", off)

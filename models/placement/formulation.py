@@ -19,6 +19,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from models.constraints.evaluate import (ALIGN_TOL, EDGE_TOL, FAR_MIN, FRONT_MAX_GAP, LATERAL_SLACK, MIDDLE_MIN,
+                                         SIDE_MAX_GAP)
 from models.placement.base import PlacementStep
 from models.placement.problem import DOOR_CLEARANCE, PlacementProblem, time_budget
 from models.placement.result import make_layout
@@ -30,9 +32,6 @@ RELATION_WEIGHT = 1.0
 CLEARANCE_WEIGHT = 1.0
 NEAR_LINF = 0.7  # box-to-box distance along each axis; within it, the gap is at most ~1 m
 AROUND_LINF = 0.42
-FAR_GAP = 1.5
-FRONT_GAP, SIDE_GAP, SLACK, ALIGN = 1.5, 0.8, 0.3, 0.1
-EDGE_TOL, MIDDLE_MIN = 0.05, 0.4
 PIN = 0.005  # a kept pose may move this much, so that poses rounded to 0.1 mm stay feasible
 
 
@@ -223,7 +222,7 @@ def _relation(m: Model, A: ObjVars, B: ObjVars, name: str, tag: str) -> None:
     if name == "far":
         s = f"{tag}"
         m.soft(s, [], RELATION_WEIGHT, needs)
-        m.any_of(_apart(A, B, FAR_GAP), when=[s], tag=tag + "d")
+        m.any_of(_apart(A, B, FAR_MIN), when=[s], tag=tag + "d")
         return
     if name == "face to":  # A's front within 45 degrees of the direction to B, per rotation of A
         cases = []
@@ -240,7 +239,7 @@ def _relation(m: Model, A: ObjVars, B: ObjVars, name: str, tag: str) -> None:
     if name == "center aligned":
         s = tag
         m.soft(s, [], RELATION_WEIGHT, needs)
-        m.any_of([[dx - ALIGN, -dx - ALIGN], [dz - ALIGN, -dz - ALIGN]], when=[s], tag=tag + "a")
+        m.any_of([[dx - ALIGN_TOL, -dx - ALIGN_TOL], [dz - ALIGN_TOL, -dz - ALIGN_TOL]], when=[s], tag=tag + "a")
         return
     # directional relations, in B's frame, per rotation k of B
     cases = []
@@ -254,14 +253,14 @@ def _relation(m: Model, A: ObjVars, B: ObjVars, name: str, tag: str) -> None:
         a_across = A.hx if fx == 0 else A.hz
         if name in ("in front of", "behind"):
             sign = 1 if name == "in front of" else -1
-            rows = [bd - sign * ahead, sign * ahead - bd - a_along - FRONT_GAP, lateral - bw - SLACK,
-                    -lateral - bw - SLACK]
+            rows = [bd - sign * ahead, sign * ahead - bd - a_along - FRONT_MAX_GAP, lateral - bw - LATERAL_SLACK,
+                    -lateral - bw - LATERAL_SLACK]
             cases.append(([B.rot[k]], rows))
         else:  # side of, left of, right of
             sides = {"right of": [1], "left of": [-1], "side of": [1, -1]}[name]
             for sg in sides:
-                rows = [bw - sg * lateral, sg * lateral - bw - a_across - SIDE_GAP, ahead - bd - SLACK,
-                        -ahead - bd - SLACK]
+                rows = [bw - sg * lateral, sg * lateral - bw - a_across - SIDE_MAX_GAP, ahead - bd - LATERAL_SLACK,
+                        -ahead - bd - LATERAL_SLACK]
                 cases.append(([B.rot[k], f"{tag}.side{sg}"], rows))
     if name == "side of":
         m.binary(f"{tag}.side1")
