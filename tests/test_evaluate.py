@@ -1,8 +1,9 @@
 """Every constraint of constraints.md on hand-built poses whose answer is known."""
 
+import numpy as np
 import pytest
 
-from models.constraints.evaluate import Poses, placement, relation
+from models.constraints.evaluate import AROUND_MAX_GAP, FLOAT_TOL, NEAR_MAX, Poses, placement, relation
 
 # B: a 2 m wide, 1 m deep table at (5, 5) facing +z (north).
 B = Poses.one(5, 5, 0, 2.0, 1.0)
@@ -80,9 +81,6 @@ def test_a_gap_off_a_threshold_in_the_last_bits_meets_it_and_a_real_miss_does_no
     """The judge measures gaps between polygons (rotated by sin and cos), the placers between boxes: a chair at
     the 0.6 m of `around` came out 0.6000000000000002 in the judge and 0.6 in the polish, which counted it met
     and the metric not (seen-00022)."""
-    import numpy as np
-    from models.constraints.evaluate import AROUND_MAX_GAP, FLOAT_TOL, NEAR_MAX
-
     chair = Poses.one(5, 6.6 + 0.25, 180, 0.5, 0.5)  # facing the table, 0.6 m beyond its front
     for gap, met in [(AROUND_MAX_GAP, True), (np.nextafter(AROUND_MAX_GAP, 1), True),
                      (AROUND_MAX_GAP + 100 * FLOAT_TOL, False)]:

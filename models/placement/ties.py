@@ -2,7 +2,7 @@
 equal energy tie whatever the last bits of their float sums (which a sum's order and the CPU's maths change), and a
 tie goes to the pose first in candidate order. Ordered by the raw floats, a change of one unit in the last place
 of the candidates' totals changed 29 of 40 Plan2Place layouts on `seen` (README, Plan2Place; experiment log,
-"Ties broken by the last bit"). The step-wise placers' own picks break ties by a seeded draw instead
+"Ties broken by the last bit of a float"). The step-wise placers' own picks break ties by a seeded draw instead
 (`greedy.tie_broken`)."""
 
 from __future__ import annotations
