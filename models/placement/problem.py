@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Collection
 from dataclasses import dataclass, field
 
 from models.constraints import ConstraintSet, read_constraints
@@ -34,9 +35,10 @@ class PlacementProblem:
         return self.constraints.warnings
 
     @classmethod
-    def from_plan(cls, plan: ConstraintPlan, fixed: dict[str, tuple[float, float, float]] | None = None
-                  ) -> PlacementProblem:
-        """`fixed`: poses to keep as they are (a designer re-plans from an edited point onwards)."""
+    def from_plan(cls, plan: ConstraintPlan, fixed: dict[str, tuple[float, float, float]] | None = None,
+                  first: Collection[str] = ()) -> PlacementProblem:
+        """`fixed`: poses to keep as they are (a designer re-plans from an edited point onwards); `first`: objects
+        to place before all others but the fixed ones (a placer solving again with the objects it left out first)."""
         cat = catalogue()
         types = {o.id: o.type for o in plan.objects}
         constraints = read_constraints(
@@ -54,7 +56,9 @@ class PlacementProblem:
         clearance = {o.id: cat.front_clearance(o.type) if o.type in cat else 0.0 for o in plan.objects}
         order = _order(feasible, constraints)
         kept = {k: v for k, v in (fixed or {}).items() if any(o.id == k for o in order)}
-        order = [o for o in order if o.id in kept] + [o for o in order if o.id not in kept]
+        ahead = {o.id for o in order if o.id in first and o.id not in kept}
+        order = [o for o in order if o.id in kept] + [o for o in order if o.id in ahead] + \
+            [o for o in order if o.id not in kept and o.id not in ahead]
         return cls(plan, constraints, order, impossible, clearance, kept)
 
 
