@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import copy
 import time
-from collections.abc import Callable, Collection
+from collections.abc import Callable
 from dataclasses import dataclass
 from functools import cached_property
 
@@ -75,9 +75,8 @@ def hard_filter(scorer: CandidateScorer, obj: PlanObject, placed: list[PlacedObj
 class Episode:
     """Objects placed one at a time in `problem.order`; fixed poses are taken as they are."""
 
-    def __init__(self, plan: ConstraintPlan, fixed: Fixed | None = None, first: Collection[str] = ()):
-        """`first`: objects placed before all others but the fixed ones (`PlacementProblem.from_plan`)."""
-        self.problem = PlacementProblem.from_plan(plan, fixed, first)
+    def __init__(self, plan: ConstraintPlan, fixed: Fixed | None = None):
+        self.problem = PlacementProblem.from_plan(plan, fixed)
         self.scorer = CandidateScorer(self.problem)
         self.order = self.problem.order
         self.i = 0
@@ -256,29 +255,19 @@ def place_stepwise(plan: ConstraintPlan, rng: np.random.Generator, choose: Choos
                    observer: StepObserver | None = None, repair: bool = True) -> Episode:
     """One episode of a step-wise placer (greedy, look-ahead, Plan2Place): at each step with a legal candidate,
     `choose(episode, options, rng)` gives (pick among the feasible candidates, probabilities for the heat-map, the
-    step's reason); each step is observed; then, with `repair`, the repairs, which may solve again with the objects
-    left out placed first (models.placement.again). All of it on one BLAS thread (models.placement.blas)."""
-    from models.placement.repair import fit, repair as repair_layout  # they build on this module's Episode
-
-    def steps(first: list[str], seen: StepObserver | None) -> Episode:
-        ep = Episode(plan, fixed, first)
+    step's reason); each step is observed; then, with `repair`, the repairs. All of it on one BLAS thread
+    (models.placement.blas)."""
+    with blas.one_blas_thread():
+        ep = Episode(plan, fixed)
         while not ep.done:
             opts = ep.options()
             pick, probs, why = None, np.zeros(0), ""
             if len(opts.feasible):
                 pick, probs, why = choose(ep, opts, rng)
             ep.apply(opts, pick)
-            if seen is not None:
-                seen(ep.step_record(opts, pick, probs, why))
-        return ep
-
-    def again(first: list[str], seen: StepObserver) -> Episode:
-        ep = steps(first, seen)
-        fit(ep, seen)
-        return ep
-
-    with blas.one_blas_thread():
-        ep = steps([], observer)
+            if observer is not None:
+                observer(ep.step_record(opts, pick, probs, why))
         if repair:
-            ep = repair_layout(ep, observer, again)
+            from models.placement.repair import repair as repair_layout  # it builds on this module's Episode
+            repair_layout(ep, observer)
     return ep

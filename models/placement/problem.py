@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-from collections.abc import Collection
 from dataclasses import dataclass, field
 
 from models.constraints import ConstraintSet, read_constraints
@@ -35,10 +34,9 @@ class PlacementProblem:
         return self.constraints.warnings
 
     @classmethod
-    def from_plan(cls, plan: ConstraintPlan, fixed: dict[str, tuple[float, float, float]] | None = None,
-                  first: Collection[str] = ()) -> PlacementProblem:
-        """`fixed`: poses to keep as they are (a designer re-plans from an edited point onwards); `first`: objects
-        to place before all others but the fixed ones (a placer solving again with the objects it left out first)."""
+    def from_plan(cls, plan: ConstraintPlan, fixed: dict[str, tuple[float, float, float]] | None = None
+                  ) -> PlacementProblem:
+        """`fixed`: poses to keep as they are (a designer re-plans from an edited point onwards)."""
         cat = catalogue()
         types = {o.id: o.type for o in plan.objects}
         constraints = read_constraints(
@@ -56,9 +54,7 @@ class PlacementProblem:
         clearance = {o.id: cat.front_clearance(o.type) if o.type in cat else 0.0 for o in plan.objects}
         order = _order(feasible, constraints)
         kept = {k: v for k, v in (fixed or {}).items() if any(o.id == k for o in order)}
-        ahead = {o.id for o in order if o.id in first and o.id not in kept}
-        order = [o for o in order if o.id in kept] + [o for o in order if o.id in ahead] + \
-            [o for o in order if o.id not in kept and o.id not in ahead]
+        order = [o for o in order if o.id in kept] + [o for o in order if o.id not in kept]
         return cls(plan, constraints, order, impossible, clearance, kept)
 
 

@@ -23,7 +23,6 @@ from __future__ import annotations
 import numpy as np
 
 from models.energy.vectorised import CandidateEnergy
-from models.placement.again import SolveAgain, left_out_first
 from models.placement.base import StepObserver
 from models.placement.greedy import NO_ROOM, Episode
 from models.placement.groups import regroup
@@ -60,22 +59,11 @@ def _best_move(ep: Episode, now: Standing, oid: str) -> Move | None:
     return best
 
 
-def repair(ep: Episode, observer: StepObserver | None = None, again: SolveAgain | None = None) -> Episode:
+def repair(ep: Episode, observer: StepObserver | None = None) -> list[str]:
     """Every pass on the finished episode `ep` (room for the left-out, access, the constraints' polish, its group
-    moves and the companions' pass, which never lose access); with `again` (the placer solving anew with given
-    objects first), between the first two and the others, solving again with the objects left out first
-    (models.placement.again). The repaired episode: `ep` itself, or one solved again."""
-    fit(ep, observer)
-    if again is not None:
-        ep = left_out_first(ep, again, observer)
-    polish(ep, observer), regroup(ep, observer), keep_companions(ep, observer)
-    return ep
-
-
-def fit(ep: Episode, observer: StepObserver | None = None) -> list[str]:
-    """The passes that place objects and restore access (room for the left-out, then access): the ids moved or
-    placed, in order."""
-    return make_room(ep, observer) + restore_access(ep, observer)
+    moves and the companions' pass, which never lose access): the ids moved or placed, in order."""
+    return make_room(ep, observer) + restore_access(ep, observer) + polish(ep, observer) + regroup(ep, observer) + \
+        keep_companions(ep, observer)
 
 
 def make_room(ep: Episode, observer: StepObserver | None = None) -> list[str]:

@@ -1,6 +1,7 @@
 """Solving again with the left-out objects first (models.placement.again), against not (`ROUNDS` 0), on the diagnosis
 plans (16 per set x 2 seeds, 20 on `dense`; never the bench's or fresh plans), alternating in one process; writes
-`diagnose.md` and `diagnose.json` here. Run from a tree's root:
+`diagnose.md` and `diagnose.json` here. Run from the root of a tree of commit e019e2f (models.placement.again left
+`models/` after the gate):
 
     PYTHONPATH=. python app/bench/results/plan2place/left-out-first/diagnose.py
 """

@@ -2,7 +2,7 @@
 (`again.ROUNDS` 0) on fresh plans (tag `left-out-first`: 48 `dense` x 5 seeds, 24 `seen`, `unseen_a`, `unseen_b` x 2
 seeds; `human`: `human_rooms`, 1 seed), alternating in one process; writes `runs.json` and `result.md` here.
 
-    PYTHONPATH=. python app/bench/results/plan2place/left-out-first/gate.py
+    git worktree add /tmp/lof e019e2f && cd /tmp/lof && PYTHONPATH=. python app/bench/results/plan2place/left-out-first/gate.py
 """
 import json
 import statistics
