@@ -221,3 +221,34 @@ def test_a_crowded_room_gets_a_second_round_that_meets_more(monkeypatch):
     assert len(rounds) == 2 and rounds[0] < rounds[1] < met_among(ep, ep.placed, {p.id for p in ep.placed})
     rounds.clear()
     assert not crowded(SEEN["seen-00002"]) and polish(finished(SEEN["seen-00002"])) and len(rounds) == 1
+
+
+@pytest.mark.parametrize("dataset, pid", [("dense", "dense-00072"),  # two polish rounds
+                                          ("seen", "seen-00002")])  # the polish, the group moves, the companions
+def test_the_passes_carry_one_energy_setup_equal_to_a_fresh_one(monkeypatch, dataset, pid):
+    """After a pass that moved something, the next pass and the next polish round start from the set-up its last
+    move left (`Episode.repaired`), not from one built afresh, and that set-up equals a fresh one."""
+    from models.energy.vectorised import CandidateEnergy
+    from models.placement.groups import regroup
+    from models.placement.habits import keep_companions
+    from models.placement.repair import restore_access
+    plan = next(r.plan for r in load_dataset(dataset) if r.plan.id == pid)
+    ep = finished(plan)
+    restore_access(ep)
+    built, init = [], CandidateEnergy.__init__
+
+    def counted(self, problem, placed, *a, **k):
+        built.append(len(placed))
+        init(self, problem, placed, *a, **k)
+
+    monkeypatch.setattr(CandidateEnergy, "__init__", counted)
+    Standing(ep).setup  # the one the passes below start from
+    start = len(built)
+    moved = polish(ep) + regroup(ep) + keep_companions(ep)
+    assert len(moved) >= 5 and not [n for n in built[start:] if n]  # moves, and no full set-up built afresh
+    monkeypatch.undo()
+    carried, fresh = Standing(ep).setup, CandidateEnergy(ep.problem, ep.placed)
+    assert carried is ep.repaired() and carried is not fresh
+    for term, value in fresh.terms().items():
+        assert abs(carried.terms()[term] - value) < 1e-9, term
+    assert np.array_equal(carried.blocked, fresh.blocked) and np.array_equal(carried.reach, fresh.reach)

@@ -86,6 +86,8 @@ class Episode:
         self.terms: dict[str, float] = {}
         self.n = max(len(self.problem.plan.objects), 1)
         self._energy = CandidateEnergy(self.problem, [], pending=self.pending())  # updated step by step
+        # the energy set-up a repair's last move or pass left, made when first asked (models.placement.polish.Standing)
+        self.repaired: Callable[[], CandidateEnergy] | None = None
 
     @property
     def setup(self) -> CandidateEnergy:

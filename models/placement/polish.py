@@ -214,7 +214,6 @@ class Standing:
 
     def __init__(self, ep: Episode):
         self.ep, self.reach = ep, ep.reach
-        self._next_setup: Callable[[], CandidateEnergy] | None = None
 
     @cached_property
     def energy(self) -> float:
@@ -228,14 +227,16 @@ class Standing:
 
     @cached_property
     def setup(self) -> CandidateEnergy:
-        """The energy set-up of the layout (the last move's, or the episode's last one if no repair has moved
-        anything since)."""
-        if self._next_setup is not None:
-            return self._next_setup()
-        last = self.ep.setup
-        if [_key(p) for p in last.placed] == [_key(p) for p in self.ep.placed]:
-            return last
-        return CandidateEnergy(self.ep.problem, self.ep.placed)
+        """The energy set-up of the layout: the one the last repair move or pass left (`Episode.repaired`), else the
+        episode's last step's, if it is of this layout; else a fresh one, which the passes after share."""
+        now = [_key(p) for p in self.ep.placed]
+        for made in (self.ep.repaired, lambda: self.ep.setup):
+            setup = made() if made is not None else None
+            if setup is not None and [_key(p) for p in setup.placed] == now:
+                return setup
+        setup = CandidateEnergy(self.ep.problem, self.ep.placed)
+        self.ep.repaired = lambda: setup
+        return setup
 
     def within(self, energy: CandidateEnergy) -> bool:
         """Can the objects of `energy`'s set-up, completed by the others of this layout wherever they go, stay within
@@ -245,7 +246,7 @@ class Standing:
     def moved(self, move: Move) -> None:
         self.ep.placed, self.ep.energy = move.placed, move.energy
         self.ep.terms = dict(move.steps[-1].terms)  # the last step's: the moved layout's, nothing pending
-        self.energy, self.out, self._next_setup = move.energy, move.out, move.setup
+        self.energy, self.out, self.ep.repaired = move.energy, move.out, cache(move.setup)
         self.__dict__.pop("setup", None)
 
     def take(self, move: Move, moved: list[str], observer: StepObserver | None) -> None:
