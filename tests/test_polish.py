@@ -6,14 +6,19 @@ import numpy as np
 import pytest
 
 from models.datasets import load_dataset
+from models.energy.vectorised import CandidateEnergy
 from models.geometry import SweptBoxes, overlap_many
 from models.metrics import scene_metrics
 from models.placement.candidates import OVERLAP_TOL
 from models.placement.greedy import GreedySolver, hard_filter
+from models.placement.groups import regroup
+from models.placement.habits import keep_companions
 from models.placement.moves import displacements
 from models.constraints.evaluate import placement
 from models.placement.candidates import poses_of
-from models.placement.polish import ALLOWANCE, MAKE_WAY_POSES, MORE_MET, Standing, broken, crowded, met, met_among, polish
+from models.placement.polish import (ALLOWANCE, MAKE_WAY_POSES, MORE_MET, Standing, broken, crowded, met, met_among,
+                                     polish)
+from models.placement.repair import restore_access
 from episode_support import finished, judged
 
 SEEN = {r.plan.id: r.plan for r in load_dataset("seen", "train")[:120]}
@@ -228,10 +233,6 @@ def test_a_crowded_room_gets_a_second_round_that_meets_more(monkeypatch):
 def test_the_passes_carry_one_energy_setup_equal_to_a_fresh_one(monkeypatch, dataset, pid):
     """After a pass that moved something, the next pass and the next polish round start from the set-up its last
     move left (`Episode.repaired`), not from one built afresh, and that set-up equals a fresh one."""
-    from models.energy.vectorised import CandidateEnergy
-    from models.placement.groups import regroup
-    from models.placement.habits import keep_companions
-    from models.placement.repair import restore_access
     plan = next(r.plan for r in load_dataset(dataset) if r.plan.id == pid)
     ep = finished(plan)
     restore_access(ep)

@@ -23,7 +23,7 @@ from models.placement.base import get_solver
 from models.placement.greedy import NO_ROOM, hard_filter
 from models.placement.groups import regroup
 from models.placement.habits import keep_companions
-from models.placement.moves import displacements, legal_poses, move_step, scored
+from models.placement.moves import displacements, legal_poses, scored
 from models.placement.ties import steady
 
 sys.path.insert(0, str(Path(__file__).parent.parent / "lookahead-bound"))
