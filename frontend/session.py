@@ -378,7 +378,6 @@ class StudioSession:
         except AssertionError:  # the browser has not reported its camera yet
             return
         room = scene.room
-        self.state.view, self.state.canvas = mode, (width, height)
         if mode == "vr" and scene.vr_anchor is not None:
             v = scene.vr_anchor
             position, look_at = camera.vr_view(v.x, v.z, v.rotation)
@@ -398,6 +397,7 @@ class StudioSession:
             cam.fov = fov
             cam.position = position  # position first: viser moves look-at along with a new position
             cam.look_at = look_at
+        self.state.view, self.state.canvas = mode, (width, height)  # last: a reader sees the camera already moved
 
     def _camera_moved(self, cam) -> None:
         """Refit after the window is resized (the canvas size changed), keeping the current kind of view."""
