@@ -29,6 +29,11 @@ def floor_like(rgb: np.ndarray) -> np.ndarray:
     return (r >= g) & (g >= b) & (r - b >= 12) & (r - b <= 60) & (r > 90)
 
 
+def floor_corners(session, room) -> np.ndarray:
+    """Screen positions of the room's floor corners, seen by the tab's camera."""
+    return np.array([screen_xy(session, p) for p in room_points(room.width, room.depth, 0.0)])
+
+
 def test_room_in_view_after_orbit_and_generate(browser, studio):
     before = set(studio.sessions)
     page = open_studio(browser, studio)
@@ -47,7 +52,7 @@ def test_room_in_view_after_orbit_and_generate(browser, studio):
     width, height = page.viewport_size["width"], page.viewport_size["height"]
     free = width - PANEL_PX
     room = session.state.gen.scene.room
-    corners = np.array([screen_xy(session, p) for p in room_points(room.width, room.depth, 0.0)])
+    corners = floor_corners(session, room)
     assert (corners[:, 0] >= 0).all() and (corners[:, 0] <= free).all(), corners
     assert (corners[:, 1] >= 0).all() and (corners[:, 1] <= height).all(), corners
     shot = np.asarray(Image.open(io.BytesIO(page.screenshot())).convert("RGB"))
@@ -60,7 +65,7 @@ def test_room_in_view_after_orbit_and_generate(browser, studio):
     page.get_by_role("button", name="Top view").click()
     wait_until(page, lambda: session.state.view == "top", "the top view")
     settle(page)
-    corners = np.array([screen_xy(session, p) for p in room_points(room.width, room.depth, 0.0)])
+    corners = floor_corners(session, room)
     assert (corners[:, 0] <= free).all() and (corners[:, 1] >= 0).all()
     assert page.evaluate("() => window.__viserMutable.cameraControl.maxPolarAngle") < math.pi / 2  # above floor
 
@@ -68,7 +73,7 @@ def test_room_in_view_after_orbit_and_generate(browser, studio):
     wait_until(page, lambda: session.state.canvas == (1000, 760), "a refit after the resize")
 
     def framed() -> bool:  # the browser may report a camera update sent before the refit reached it
-        corners = np.array([screen_xy(session, p) for p in room_points(room.width, room.depth, 0.0)])
+        corners = floor_corners(session, room)
         return bool((corners[:, 0] >= 0).all() and (corners[:, 0] <= 1000 - PANEL_PX).all()
                     and (corners[:, 1] <= 760).all())
     wait_until(page, framed, "the room's floor inside the smaller window, left of the panel")
