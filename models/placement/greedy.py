@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import copy
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Collection
 from dataclasses import dataclass
 from functools import cached_property
 
@@ -75,8 +75,8 @@ def hard_filter(scorer: CandidateScorer, obj: PlanObject, placed: list[PlacedObj
 class Episode:
     """Objects placed one at a time in `problem.order`; fixed poses are taken as they are."""
 
-    def __init__(self, plan: ConstraintPlan, fixed: Fixed | None = None):
-        self.problem = PlacementProblem.from_plan(plan, fixed)
+    def __init__(self, plan: ConstraintPlan, fixed: Fixed | None = None, first: Collection[str] = ()):
+        self.problem = PlacementProblem.from_plan(plan, fixed, first)
         self.scorer = CandidateScorer(self.problem)
         self.order = self.problem.order
         self.i = 0
@@ -257,19 +257,30 @@ def place_stepwise(plan: ConstraintPlan, rng: np.random.Generator, choose: Choos
                    observer: StepObserver | None = None, repair: bool = True) -> Episode:
     """One episode of a step-wise placer (greedy, look-ahead, Plan2Place): at each step with a legal candidate,
     `choose(episode, options, rng)` gives (pick among the feasible candidates, probabilities for the heat-map, the
-    step's reason); each step is observed; then, with `repair`, the repairs. All of it on one BLAS thread
-    (models.placement.blas)."""
+    step's reason); each step is observed; then, with `repair`, the repairs, and the episode solved again with the
+    objects of broken constraints first, if that is better (models.placement.reorder; from the same random state).
+    All of it on one BLAS thread (models.placement.blas)."""
     with blas.one_blas_thread():
-        ep = Episode(plan, fixed)
-        while not ep.done:
-            opts = ep.options()
-            pick, probs, why = None, np.zeros(0), ""
-            if len(opts.feasible):
-                pick, probs, why = choose(ep, opts, rng)
-            ep.apply(opts, pick)
-            if observer is not None:
-                observer(ep.step_record(opts, pick, probs, why))
+        start = copy.deepcopy(rng)
+        ep = _steps(plan, rng, choose, fixed, observer, ())
         if repair:
-            from models.placement.repair import repair as repair_layout  # it builds on this module's Episode
-            repair_layout(ep, observer)
+            from models.placement.reorder import broken_first  # it builds on this module's Episode
+            from models.placement.repair import repair as repair_layout
+            ep = broken_first(ep, repair_layout, lambda first, seen: _steps(plan, copy.deepcopy(start), choose, fixed,
+                                                                             seen, first), observer)
+    return ep
+
+
+def _steps(plan: ConstraintPlan, rng: np.random.Generator, choose: Choose, fixed: Fixed | None,
+           observer: StepObserver | None, first: Collection[str]) -> Episode:
+    """`place_stepwise`'s steps, with the objects of `first` placed as early as their targets allow."""
+    ep = Episode(plan, fixed, first)
+    while not ep.done:
+        opts = ep.options()
+        pick, probs, why = None, np.zeros(0), ""
+        if len(opts.feasible):
+            pick, probs, why = choose(ep, opts, rng)
+        ep.apply(opts, pick)
+        if observer is not None:
+            observer(ep.step_record(opts, pick, probs, why))
     return ep

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Collection
 from dataclasses import dataclass, field
 
 from models.constraints import ConstraintSet, read_constraints
@@ -34,9 +35,10 @@ class PlacementProblem:
         return self.constraints.warnings
 
     @classmethod
-    def from_plan(cls, plan: ConstraintPlan, fixed: dict[str, tuple[float, float, float]] | None = None
-                  ) -> PlacementProblem:
-        """`fixed`: poses to keep as they are (a designer re-plans from an edited point onwards)."""
+    def from_plan(cls, plan: ConstraintPlan, fixed: dict[str, tuple[float, float, float]] | None = None,
+                  first: Collection[str] = ()) -> PlacementProblem:
+        """`fixed`: poses to keep as they are (a designer re-plans from an edited point onwards); `first`: ids to
+        place as early as their targets allow (models.placement.reorder)."""
         cat = catalogue()
         types = {o.id: o.type for o in plan.objects}
         constraints = read_constraints(
@@ -52,20 +54,20 @@ class PlacementProblem:
             else:
                 feasible.append(o)
         clearance = {o.id: cat.front_clearance(o.type) if o.type in cat else 0.0 for o in plan.objects}
-        order = _order(feasible, constraints)
+        order = _order(feasible, constraints, set(first))
         kept = {k: v for k, v in (fixed or {}).items() if any(o.id == k for o in order)}
         order = [o for o in order if o.id in kept] + [o for o in order if o.id not in kept]
         return cls(plan, constraints, order, impossible, clearance, kept)
 
 
-def _order(objects: list[PlanObject], constraints: ConstraintSet) -> list[PlanObject]:
+def _order(objects: list[PlanObject], constraints: ConstraintSet, first: set[str]) -> list[PlanObject]:
     """Topological order of the 'target before dependent' graph; cycles are broken by priority.
 
-    Priority: task objects first, then wall objects, then larger footprints (Holodeck's habit).
+    Priority: the objects of `first`, then task objects, then wall objects, then larger footprints (Holodeck's habit).
     """
     def priority(o: PlanObject) -> tuple:
         oc = constraints.objects[o.id]
-        return (not o.is_task, oc.placement != "edge", -o.size.x * o.size.z, o.id)
+        return (o.id not in first, not o.is_task, oc.placement != "edge", -o.size.x * o.size.z, o.id)
 
     remaining = {o.id: o for o in objects}
     deps = {o.id: {c.target for c in constraints.objects[o.id].relations if c.target in remaining} for o in objects}
