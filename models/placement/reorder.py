@@ -8,9 +8,9 @@ state, with the objects of the broken constraints and their relations' targets p
 ones), unless that order is the one it had (in the crowded rooms of `dense` every object is in a broken constraint).
 The new steps get every repair only if they meet as many constraints as the first episode's steps did (on the
 diagnosis plans every episode kept passed that screen, and 14 of the 24 not kept failed it). The new episode is kept
-if it meets more constraints, its energy rises by at most the polish's `ALLOWANCE`, it places
-every object the first one placed and leaves no more task objects out of the robot's reach; its steps are then shown
-after the first one's. Measured in `app/bench/results/plan2place/broken-first/` (README, Plan2Place).
+if it meets more constraints, its energy rises by at most the polish's `ALLOWANCE`, it places every object the first
+one placed and it leaves no more task objects out of the robot's reach; its steps are then shown after the first
+one's. Measured in `app/bench/results/plan2place/broken-first/` (README, Plan2Place).
 """
 
 from __future__ import annotations
@@ -49,7 +49,8 @@ def first_ids(ep: Episode) -> list[str]:
     return [o.id for o in ep.problem.plan.objects if o.id in ids and o.id not in ep.problem.fixed]
 
 
-def _order(ep: Episode, first) -> list[str]:
+def _order(ep: Episode, first: list[str]) -> list[str]:
+    """The ids in the order `ep`'s plan is placed in with `first` first."""
     return [o.id for o in PlacementProblem.from_plan(ep.problem.plan, ep.problem.fixed, first).order]
 
 
