@@ -10,7 +10,8 @@ The new steps get every repair only if they meet as many constraints as the firs
 diagnosis plans every episode kept passed that screen, and 14 of the 24 not kept failed it). The new episode is kept
 if it meets more constraints, its energy rises by at most the polish's `ALLOWANCE`, it places every object the first
 one placed and it leaves no more task objects out of the robot's reach; its steps are then shown after the first
-one's. Measured in `app/bench/results/plan2place/broken-first/` (README, Plan2Place).
+one's, each giving that reason before its own. Measured in `app/bench/results/plan2place/broken-first/` (README,
+Plan2Place).
 """
 
 from __future__ import annotations
@@ -36,7 +37,7 @@ def met(ep: Episode) -> int:
 
 
 def better(new: Episode, old: Episode) -> bool:
-    """The rule of the module: more constraints met, within the allowance, nothing dropped, no task object walled off."""
+    """The module's rule: more constraints met, within the allowance, nothing dropped, no task object walled off."""
     now, then = Standing(new), Standing(old)
     return (met(new) > met(old) and now.energy <= then.energy + ALLOWANCE + TOL
             and {p.id for p in old.placed} <= {p.id for p in new.placed} and now.out <= then.out)
@@ -74,5 +75,5 @@ def broken_first(ep: Episode, repair: Repair, again: Steps, observer: StepObserv
             break
         best, why = new, AGAIN.format(", ".join(first))
         for step in steps if observer is not None else ():
-            observer(dataclasses.replace(step, why=step.why or why))
+            observer(dataclasses.replace(step, why=f"{why}; {step.why}" if step.why else why))
     return best
