@@ -79,12 +79,8 @@ def test_nothing_is_solved_again_when_the_order_would_not_change():
 
 def test_steps_meeting_fewer_constraints_than_the_first_episodes_are_not_repaired():
     plan = PLANS[ROOM]
-    reorder.ROUNDS = 0
-    try:
-        first = place(shipped_policy(), plan, np.random.default_rng(SEED), shipped_weights().use_global, repair=False)
-        fewer = place(shipped_policy(), plan, np.random.default_rng(SEED), shipped_weights().use_global, repair=False)
-    finally:
-        reorder.ROUNDS = 1
+    first, fewer = (place(shipped_policy(), plan, np.random.default_rng(SEED), shipped_weights().use_global,
+                          repair=False) for _ in range(2))  # the steps alone: no repair, no second solve
     fewer.placed = fewer.placed[:-2]
     assert reorder.met(fewer) < reorder.met(first)
     repaired, asked = [], []
