@@ -87,3 +87,15 @@ def test_steps_meeting_fewer_constraints_than_the_first_episodes_are_not_repaire
     kept = broken_first(first, lambda ep, observer: repaired.append(ep),
                         lambda ids, seen: asked.append(ids) or fewer)
     assert kept is first and repaired == [first] and asked == [first_ids(first)]
+
+
+@pytest.mark.parametrize("pid", ["human-FloorPlan313", "human-FloorPlan201"])
+def test_reordering_a_problem_gives_the_order_a_fresh_problem_with_first_would(pid):
+    from models.placement.problem import PlacementProblem
+    plan = PLANS[pid]
+    ids = [o.id for o in plan.objects]
+    first = ids[len(ids) // 2:]
+    for fixed in (None, {ids[0]: (1.0, 1.0, 0.0)}):
+        problem = PlacementProblem.from_plan(plan, fixed)
+        assert problem.reordered(first) == PlacementProblem.from_plan(plan, fixed, first).order != problem.order
+        assert problem.reordered(()) == problem.order

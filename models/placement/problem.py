@@ -54,10 +54,19 @@ class PlacementProblem:
             else:
                 feasible.append(o)
         clearance = {o.id: cat.front_clearance(o.type) if o.type in cat else 0.0 for o in plan.objects}
-        order = _order(feasible, constraints, set(first))
-        kept = {k: v for k, v in (fixed or {}).items() if any(o.id == k for o in order)}
-        order = [o for o in order if o.id in kept] + [o for o in order if o.id not in kept]
+        kept = {k: v for k, v in (fixed or {}).items() if any(o.id == k for o in feasible)}
+        order = _fixed_first(_order(feasible, constraints, set(first)), kept)
         return cls(plan, constraints, order, impossible, clearance, kept)
+
+    def reordered(self, first: Collection[str]) -> list[PlanObject]:
+        """The order `from_plan` gives with `first` placed as early as their targets allow, without reading the plan
+        again."""
+        return _fixed_first(_order(self.order, self.constraints, set(first)), self.fixed)
+
+
+def _fixed_first(order: list[PlanObject], fixed: Collection[str]) -> list[PlanObject]:
+    """`order` with the objects of kept poses moved to its front."""
+    return [o for o in order if o.id in fixed] + [o for o in order if o.id not in fixed]
 
 
 def _order(objects: list[PlanObject], constraints: ConstraintSet, first: set[str]) -> list[PlanObject]:

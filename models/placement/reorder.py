@@ -22,7 +22,6 @@ from collections.abc import Callable
 from models.placement.base import PlacementStep, StepObserver
 from models.placement.greedy import Episode
 from models.placement.polish import ALLOWANCE, TOL, Standing, broken, met_among
-from models.placement.problem import PlacementProblem
 
 ROUNDS = 1  # solves again at most this often (0: never)
 AGAIN = "solved again with {} placed first"  # the reason shown on a kept episode's steps
@@ -50,11 +49,6 @@ def first_ids(ep: Episode) -> list[str]:
     return [o.id for o in ep.problem.plan.objects if o.id in ids and o.id not in ep.problem.fixed]
 
 
-def _order(ep: Episode, first: list[str]) -> list[str]:
-    """The ids in the order `ep`'s plan is placed in with `first` first."""
-    return [o.id for o in PlacementProblem.from_plan(ep.problem.plan, ep.problem.fixed, first).order]
-
-
 def broken_first(ep: Episode, repair: Repair, again: Steps, observer: StepObserver | None = None) -> Episode:
     """`ep`'s steps `repair`ed, or the episode solved again with the objects of broken constraints first if it is
     `better` (see the module). `again` makes a new episode's steps; it is repaired only if its steps meet as many
@@ -64,7 +58,7 @@ def broken_first(ep: Episode, repair: Repair, again: Steps, observer: StepObserv
     best = ep
     for _ in range(ROUNDS):
         first = first_ids(best)
-        if not first or _order(best, first) == [o.id for o in best.problem.order]:
+        if not first or best.problem.reordered(first) == best.problem.order:
             break
         steps: list[PlacementStep] = []
         new = again(first, steps.append)
