@@ -1,0 +1,82 @@
+"""The issue's targets for Plan2Place, one verdict per set, from the placement bench's stored runs: `met`, `within
+noise` (the paired gap's 95 % interval over plans holds 0, so the bench cannot tell) or `missed`. Each verdict shows
+the figure it rests on. Paired gaps are against the best other solver of the metric, as in targets.md. Reads
+app/bench/results/placement-*/results.json, writes status.md beside this script:
+python app/bench/results/plan2place/status.py"""
+
+import json
+from pathlib import Path
+
+import numpy as np
+
+from app.bench.paired import interval, paired
+from targets import RESULTS, SETS, best_other
+
+KEY_NAV_FLOOR = 95.0  # the issue: Key_NAV >= 95 on every set
+PTO_MS = 10.0  # the issue: PTO p50 <= 10 ms per object
+PTO_TIMES_DFS = 2.0  # ... and at most twice the DFS's in the same run
+
+
+def gap(rows: list[dict], metric: str, up: bool, rng: np.random.Generator) -> tuple[float, float, float, str]:
+    """Plan2Place - the best other solver of `metric` (x 100), oriented so that positive is better, and its name."""
+    other = best_other(rows, metric, up)
+    sign = 100.0 if up else -100.0
+    mean, lo, hi = (sign * v for v in interval(paired(rows, metric, "plan2place", other), rng))
+    return mean, *sorted((lo, hi)), other
+
+
+def at_least(mean: float, lo: float, hi: float, other: str) -> str:
+    """An "at least the best baseline's" target: met unless the gap is below 0 beyond the plans' noise."""
+    verdict = "met" if lo >= 0 else "missed" if hi < 0 else "within noise"
+    return f"{verdict} ({mean:+.2f} vs {other})"
+
+
+def higher(mean: float, lo: float, hi: float, other: str) -> str:
+    """A "higher than every baseline's" target: met only when the lead is clear of the plans' noise."""
+    verdict = "met" if lo > 0 else "missed" if hi < 0 else "within noise"
+    return f"{verdict} ({mean:+.2f} vs {other})"
+
+
+def p50_ms(rows: list[dict], solver: str) -> float:
+    return 1000 * float(np.median([r["pto"] for r in rows if r["solver"] == solver]))
+
+
+def verdicts(rows: list[dict], rng: np.random.Generator) -> list[str]:
+    """One verdict per target of the issue, in the table's order."""
+    mine = [r for r in rows if r["solver"] == "plan2place"]
+    key_nav = 100 * float(np.mean([r["key_nav"] for r in mine]))
+    nav_gap = gap(rows, "key_nav", True, rng)
+    nav_ok = at_least(*nav_gap)
+    if key_nav < KEY_NAV_FLOOR:
+        nav_ok = f"missed ({key_nav:.1f} < {KEY_NAV_FLOOR:.0f}; {nav_ok.split(' (')[1][:-1]})"
+    oob = float(np.mean([r["oob"] for r in mine]))
+    left_out = 1 - float(np.mean([r["cnt"] for r in mine]))  # OOB counts an object left out as outside
+    collisions = sum(r["collisions"] for r in mine)
+    ms, dfs = p50_ms(rows, "plan2place"), p50_ms(rows, "dfs")
+    return [at_least(*gap(rows, "cnt", True, rng)), at_least(*gap(rows, "sr", True, rng)), nav_ok,
+            at_least(*gap(rows, "constraint_satisfaction", True, rng)), higher(*gap(rows, "realism", True, rng)),
+            f"{'met' if oob == 0 and collisions == 0 else 'missed'} (OOB {100 * oob:.2f}, of it left out "
+            f"{100 * left_out:.2f}; {collisions} collisions)",
+            f"{'met' if ms <= PTO_MS else 'missed'} ({ms:.1f} ms)",
+            f"{'met' if ms <= PTO_TIMES_DFS * dfs else 'missed'} ({ms / dfs:.2f} x)"]
+
+
+def main() -> str:
+    rng = np.random.default_rng(0)
+    head = ["CNT >= best", "SR >= best", f"Key_NAV >= {KEY_NAV_FLOOR:.0f} and >= best", "constraints >= best",
+            "realism > best", "OOB = 0, no collisions", f"PTO p50 <= {PTO_MS:.0f} ms",
+            f"PTO p50 <= {PTO_TIMES_DFS:.0f} x DFS"]
+    lines = ["The issue's targets for Plan2Place, per set, from the placement bench's stored runs (20 plans x 5 seeds): "
+             "*met*, *within noise* (the paired gap's 95 % bootstrap interval over plans holds 0) or *missed*; in "
+             "brackets the paired gap to the best other solver of the metric (x 100; positive = Plan2Place better) "
+             "or the figure itself. PTO as the bench timed it, two workers sharing the 2-core CPU.", "",
+             "| set | " + " | ".join(head) + " |", "| --- |" + " --- |" * len(head)]
+    for s in SETS:
+        lines.append(f"| {s} | " + " | ".join(verdicts(json.loads((RESULTS / f"placement-{s}" / "results.json").read_text()), rng)) + " |")
+    return "\n".join(lines) + "\n"
+
+
+if __name__ == "__main__":
+    text = main()
+    (Path(__file__).parent / "status.md").write_text(text)
+    print(text)
