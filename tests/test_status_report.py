@@ -67,3 +67,9 @@ def test_speed_targets_compare_with_dfs_in_the_same_runs(status):
     assert got["pto_ms"] == got["pto_dfs"] == "missed"
     got = verdicts(status, runs({"pto": 0.008}, {"pto": 0.005}))
     assert got["pto_ms"] == got["pto_dfs"] == "met"
+
+
+def test_the_readme_shows_the_verdicts_of_the_stored_bench_runs(status):
+    readme = (SCRIPTS.parents[3] / "README.md").read_text()
+    block = readme.split("<!-- plan2place-status:start -->\n")[1].split("<!-- plan2place-status:end -->")[0]
+    assert block == status.main()
