@@ -27,6 +27,7 @@ from frontend.apartment import ApartmentMode
 from frontend.checks import Finding, run_checks, summary
 from frontend.graph_image import render as render_graph
 from frontend.history import History
+from frontend.replay import placements_at, room_at, since_restart
 from frontend.view import SceneView, world
 from models.constraints import GLOBALS, RELATIONS, Constraint, read_constraints, write_constraints
 from models.energy.exact import layout_energy
@@ -346,12 +347,15 @@ class StudioSession:
         with self.client.atomic():
             self.view.clear()
             self.view.draw_room(gen.scene)
-            self.view.draw_objects(gen.scene, self._visible(), labels)
+            self.view.draw_objects(*room_at(gen.scene, self.state.steps, self.state.shown), labels)
             step = self.state.steps[self.state.shown - 1] if 0 < self.state.shown <= len(self.state.steps) else None
             self.view.heat_map(step if self.heat.value and self.state.shown < len(self.state.steps) else None)
         self._place_controls()
 
     def _visible(self) -> set[str] | None:
+        """The ids on show in the step animation (None: all of them)."""
+        if self.apartment.current is None and self.state.gen is not None:
+            return room_at(self.state.gen.scene, self.state.steps, self.state.shown)[1]
         if self.state.shown >= len(self.state.steps):
             return None
         placed_ids = {s.object_id for s in self.state.steps[:self.state.shown]}
@@ -437,39 +441,46 @@ class StudioSession:
         self.state.playing = False
 
     def _advance(self) -> None:
-        """Show the next step: heat-map of its candidates, then the object settling into its current pose
-        (where the placer put it, or where the designer moved it since)."""
+        """Show the next step: heat-map of its candidates, then the object settling into the pose the step gave it
+        (at its last step, where it stands now: the designer may have moved it since; frontend.replay). In an
+        apartment every object settles where it stands now."""
         with self.lock:
             steps = self.state.steps
             if self.state.shown >= len(steps):
                 return
             step = steps[self.state.shown]
             self.state.shown += 1
+            shown = self.state.shown
         if self.heat.value:
             self.view.heat_map(step)
-        scene = self.displayed()
-        obj = next((o for o in scene.objects if o.id == step.object_id), None)
-        room = self.apartment.where(step) if self.apartment.current is not None else ""
-        self.step_md.content = step_caption(steps, self.state.shown, obj, room)
+        room, start = "", None
+        if self.apartment.current is not None:
+            room = self.apartment.where(step)
+            obj = next((o for o in self.apartment.scene.objects if o.id == step.object_id), None)
+        else:
+            scene = self.state.gen.scene
+            (before, was), (after, now) = room_at(scene, steps, shown - 1), room_at(scene, steps, shown)
+            if step.restart:  # the room solved again from empty
+                self.view.hide(was - (now or {o.id for o in scene.all_objects()}))
+            obj = next((o for o in after.objects if o.id == step.object_id), None) if step.x is not None else None
+            if not step.restart and step.object_id in was:
+                start = next(o for o in before.objects if o.id == step.object_id)
+        self.step_md.content = step_caption(steps, shown, obj, room)
         if obj is None:
             return
         frames = max(2, min(8, int(20 / float(self.speed.value))))  # fewer frames when playing fast
         duration = min(0.25, 0.8 / float(self.speed.value))
         for k in range(1, frames + 1):
-            for o in [obj, *obj.children]:
-                self.view.drop_in(o.id, scene, k / frames)
+            self.view.settle(obj, k / frames, start)
             time.sleep(duration / frames)
-        if self.state.shown == len(steps):
+        if shown == len(steps):
             self.view.heat_map(None)
 
     def _energy_curve(self, gen: Generation, steps: list[PlacementStep]) -> None:
-        """The paper's energy terms after each placement step (exact energy), drawn when ready."""
-        placed, rows = [], []
-        by_id = {p.id: p for p in gen.layout.placements}
-        for step in steps:
-            if step.object_id in by_id and by_id[step.object_id] not in placed:  # a repair step moves a placed one
-                placed.append(by_id[step.object_id])
-            rows.append(layout_energy(gen.plan, placed).as_dict())
+        """The paper's energy terms after each placement step (exact energy) of the room as the animation shows it
+        then (frontend.replay), drawn when ready."""
+        rows = [layout_energy(gen.plan, placements_at(gen.layout.placements, steps, k)).as_dict()
+                for k in range(1, len(steps) + 1)]
         if self.state.gen is not gen or not rows:
             return
         xs = np.arange(1, len(rows) + 1, dtype=float)
@@ -934,11 +945,12 @@ class StudioSession:
 
 def step_caption(steps: list[PlacementStep], shown: int, obj, room: str = "") -> str:
     """The Placement tab's line for step number `shown` (1-based) of `steps`: the object, where it went (`obj`:
-    the object as displayed, None if unplaced) and, for a repair's move or a guarded choice, its reason."""
+    the object as displayed, None if unplaced) and, for a repair's move or a guarded choice, its reason. A step
+    placing an object already placed in the same solve is a repair's (frontend.replay.since_restart)."""
     step = steps[shown - 1]
     where = "no valid position (unplaced)" if obj is None else \
         f"x {obj.x:.2f} m, z {obj.z:.2f} m, facing {obj.rotation:.0f}°"
-    again = any(s.object_id == step.object_id for s in steps[:shown - 1])
+    again = any(s.object_id == step.object_id for s in steps[since_restart(steps, shown):shown - 1])
     doing = "repair: placing" if again else "placing"
     why = f" ({step.why})" if step.why else ""
     return f"**Step {shown} / {len(steps)}**: {room}{doing} `{step.object_id}` at {where}{why}"

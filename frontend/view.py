@@ -28,6 +28,8 @@ ZONE = (80, 200, 120)
 PLAIN = {"cast_shadow": False, "receive_shadow": False}
 LABEL_GAP = 0.16  # vertical step between labels that would overlap, metres
 LABEL_NEAR = 0.9  # labels closer than this on the floor are stacked, metres
+DROP = 0.8  # an object placed in the step animation drops in from this high, metres
+LIFT = 0.3  # an object moved in the step animation is lifted this high on the way, metres
 
 
 def world(x: float, y: float, z: float) -> tuple[float, float, float]:
@@ -213,24 +215,37 @@ class SceneView:
         self.outline = self.api.add_line_segments(f"/objects/{obj_id}/outline", segments, colors=HIGHLIGHT,
                                                   thickness=3.0, thickness_units="screen")
 
-    def drop_in(self, obj_id: str, scene: Scene, fraction: float) -> None:
-        """Animate an object settling into place: `fraction` 0 is 0.8 m above, 1 is at rest.
-
-        It is drawn in the highlight colour while it moves and takes its role colour when it lands.
-        """
-        obj = next((o for o in scene.all_objects() if o.id == obj_id), None)
-        handle = self.objects.get(obj_id)
-        if obj is None or handle is None:
-            return
-        if not handle.visible:  # first frame: show it, in the highlight colour
-            handle.visible = True
-            if obj_id in self.labels:
-                self.labels[obj_id].visible = True
-            handle.color = HIGHLIGHT
-        if fraction >= 1:
-            handle.color = colour(obj.role)
+    def settle(self, obj: SceneObject, fraction: float, start: SceneObject | None = None) -> None:
+        """Animate an object and what stands on it into their poses: `fraction` 0 is where they start, 1 at rest.
+        Without `start` (it was not on show) it drops in from `DROP` above; else it slides from its pose in `start`,
+        lifted up to `LIFT` on the way and turned halfway. It is drawn in the highlight colour while it moves and
+        takes its role colour when it lands."""
         ease = 1 - (1 - fraction) ** 3
-        handle.position = world(obj.x, obj.y + 0.8 * (1 - ease), obj.z)
+        froms = [start, *start.children] if start is not None else [None] * (1 + len(obj.children))
+        for o, was in zip([obj, *obj.children], froms):
+            handle = self.objects.get(o.id)
+            if handle is None:
+                continue
+            if not handle.visible:
+                handle.visible = True
+                if o.id in self.labels:
+                    self.labels[o.id].visible = True
+            if was is None:
+                position, turn = world(o.x, o.y + DROP * (1 - ease), o.z), o.rotation
+            else:
+                position = world(was.x + (o.x - was.x) * ease, o.y + LIFT * math.sin(math.pi * ease),
+                                 was.z + (o.z - was.z) * ease)
+                turn = o.rotation if ease >= 0.5 else was.rotation
+            handle.position = position
+            _set(handle, "color", colour(o.role) if fraction >= 1 else HIGHLIGHT)  # each change is a message
+            _set(handle, "wxyz", yaw(turn))
+
+    def hide(self, ids: set[str]) -> None:
+        """Take objects (and their labels) off show: the room emptied for a solve from the start."""
+        for oid in ids:
+            for handle in (self.objects.get(oid), self.labels.get(oid)):
+                if handle is not None:
+                    handle.visible = False
 
     def heat_map(self, step: PlacementStep | None) -> None:
         """Candidate scores of one placement step as coloured points on the floor (best over rotations)."""
@@ -250,6 +265,12 @@ class SceneView:
             t = (v - v.min()) / max(float(v.max() - v.min()), 1e-9)
             colours[finite] = np.stack([255 * t, 60 + 120 * (1 - abs(t - 0.5) * 2), 255 * (1 - t)], axis=1).astype(np.uint8)
         self.heat = self.api.add_point_cloud("/heat", points.astype(np.float32), colors=colours, point_size=0.07)
+
+
+def _set(handle, name: str, value) -> None:
+    """Set a handle's property only if it changes (each change is a message to the browser)."""
+    if not np.allclose(getattr(handle, name), value):
+        setattr(handle, name, value)
 
 
 def _remove(handle) -> None:

@@ -43,6 +43,7 @@ def test_solving_again_meets_more_constraints_within_the_allowance_and_shows_its
     why = AGAIN.format(", ".join(first_ids(first)))
     kept = once[len(steps_once):]
     assert all(s.why == why or s.why.startswith(why + "; ") for s in kept) and any(s.why == why for s in kept)
+    assert [s.restart for s in once] == [k == len(steps_once) for k in range(len(once))]  # the room emptied there
     last = {s.object_id: (s.x, s.z, s.rotation) for s in kept}
     assert all((p.x, p.z, p.rotation) == last[p.id] for p in again.placed)
 

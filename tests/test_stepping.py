@@ -49,6 +49,7 @@ def test_a_step_record_lists_the_best_scored_legal_candidates():
     scores = np.array([0.1, 0.4, -np.inf, 0.2, 0.0, 0.3, -np.inf, 0.0])
     rec = step_record(PlacementStep("chair-0", 1.0, 0.5, 90.0, cands, scores, {"total": 0.25}, "why not"), 3)
     assert rec["step"] == 3 and rec["legal"] == 6 and rec["candidates"] == 8 and rec["why"] == "why not"
+    assert rec["restart"] is False
     assert [r[-1] for r in rec["top"]] == [0.4, 0.3, 0.2, 0.1, 0.0][:TOP]
     assert rec["top"][0] == [1.0, 0.5, 90.0, 0.4]
     json.dumps(rec)

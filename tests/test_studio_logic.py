@@ -119,7 +119,79 @@ def test_a_repair_step_says_why_the_object_moved():
         for c, step in zip(captions[:first], steps[:first]):  # a first placing says why only when guarded
             assert step.why in ("", WALLS_OFF) and c.endswith(f"({WALLS_OFF})") == bool(step.why), c
             seen.add("guarded" if step.why else "")
-        for c in captions[first:]:
-            assert "repair: placing" in c and reasons.search(c), c
-            seen.add(reasons.search(c).group(1).split(" ")[0])
-    assert {"meeting", "standing", "guarded"} <= seen  # the polish's, the companions' and the guard's reasons shown
+        start = 0  # where the solve of each step began: a solve from the start places each object afresh
+        for k, (c, step) in enumerate(zip(captions, steps)):
+            start = k if step.restart else start
+            if k < first:
+                continue
+            again = any(s.object_id == step.object_id for s in steps[start:k])
+            assert ("repair: placing" in c) == again and reasons.search(c), c
+            seen.add(reasons.search(c).group(1).split(" ")[0] if again else "restarted")
+    assert {"meeting", "standing", "guarded", "restarted"} <= seen  # the polish's, the companions', the guard's
+    # reasons and a solve from the start shown
+
+
+def _thing(oid: str, x: float, z: float, rotation: float = 0.0, children=()):
+    from models.values import SceneObject, Size
+    return SceneObject(id=oid, type="Table", asset_id="a", role="context", x=x, y=0.4, z=z, rotation=rotation,
+                       size=Size(x=1.0, y=0.8, z=0.6), children=list(children))
+
+
+def _step(oid: str, pose, restart: bool = False):
+    import numpy as np
+    from models.placement import PlacementStep
+    x, z, rotation = pose if pose is not None else (None, None, None)
+    return PlacementStep(oid, x, z, rotation, np.zeros((0, 3)), np.zeros(0), {}, restart=restart)
+
+
+def test_the_step_animation_shows_each_step_where_the_placer_put_the_object():
+    from models.values import Scene
+    from frontend.replay import room_at
+
+    bread = _thing("bread-0", 1.2, 1.0)  # stands on the table, 0.2 m to its right
+    scene = Scene.model_construct(objects=[_thing("table-0", 1.0, 1.0, 0.0, [bread]), _thing("chair-0", 3.0, 1.0)])
+    steps = [_step("table-0", (2.0, 2.0, 90.0)), _step("chair-0", None),  # the chair left out at first
+             _step("table-0", (2.5, 2.0, 90.0)),  # a repair moves the table
+             _step("chair-0", (0.5, 0.5, 0.0), restart=True),  # the room solved again from empty
+             _step("table-0", (1.0, 1.0, 0.0)), _step("chair-0", (3.0, 1.0, 0.0))]
+
+    def at(shown):
+        room, visible = room_at(scene, steps, shown)
+        return {o.id: (o.x, o.z, o.rotation) for o in room.all_objects() if visible is None or o.id in visible}
+
+    assert at(0) == {}
+    table, bread_on_it = at(1)["table-0"], at(1)["bread-0"]
+    assert table == (2.0, 2.0, 90.0) and set(at(1)) == {"table-0", "bread-0"}
+    assert bread_on_it == pytest.approx((2.0, 1.8, 90.0))  # carried along: turned to face +x, its right is -z
+    assert set(at(2)) == {"table-0", "bread-0"}  # a step that leaves an object out shows nothing new
+    assert at(3)["table-0"] == (2.5, 2.0, 90.0)
+    assert at(4) == {"chair-0": (0.5, 0.5, 0.0)}  # a restart takes up what was placed before it
+    assert at(5)["table-0"] == (1.0, 1.0, 0.0) and at(5)["bread-0"] == (1.2, 1.0, 0.0)  # its last step: as it stands
+    assert at(6) == {o.id: (o.x, o.z, o.rotation) for o in scene.all_objects()}  # every step shown: the scene
+
+
+def test_at_its_last_step_an_object_stands_where_the_designer_moved_it():
+    from models.values import Scene
+    from frontend.replay import room_at
+
+    scene = Scene.model_construct(objects=[_thing("table-0", 4.0, 3.0, 180.0)])  # moved by the designer since
+    steps = [_step("table-0", (2.0, 2.0, 0.0)), _step("table-0", (2.5, 2.0, 0.0)), _step("chair-0", None)]
+    first, visible = room_at(scene, steps, 1)
+    assert (first.objects[0].x, first.objects[0].rotation) == (2.0, 0.0) and visible == {"table-0"}
+    last, _ = room_at(scene, steps, 2)
+    assert (last.objects[0].x, last.objects[0].z, last.objects[0].rotation) == (4.0, 3.0, 180.0)
+
+
+def test_the_energy_plot_follows_the_room_the_animation_shows():
+    from models.values import Placement, Size
+    from frontend.replay import placements_at
+
+    final = [Placement(id=i, type="Table", x=x, z=1.0, rotation=0.0, size=Size(x=1.0, y=0.8, z=0.6))
+             for i, x in (("table-0", 1.0), ("chair-0", 3.0))]
+    steps = [_step("table-0", (2.0, 2.0, 90.0)), _step("chair-0", (3.0, 2.0, 0.0)),
+             _step("table-0", (1.0, 1.0, 0.0), restart=True), _step("chair-0", (3.0, 1.0, 0.0))]
+    poses = [{p.id: (p.x, p.z, p.rotation) for p in placements_at(final, steps, k)} for k in range(1, 5)]
+    assert poses[0] == {"table-0": (2.0, 2.0, 90.0)}
+    assert poses[1] == {"table-0": (2.0, 2.0, 90.0), "chair-0": (3.0, 2.0, 0.0)}
+    assert poses[2] == {"table-0": (1.0, 1.0, 0.0)}  # the restart took the chair up
+    assert poses[3] == {p.id: (p.x, p.z, p.rotation) for p in final}

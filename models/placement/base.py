@@ -24,6 +24,8 @@ class PlacementStep:
     terms: dict[str, float]  # energy terms of the chosen pose
     why: str = ""  # a repair's reason for moving an object placed before, or the reach guard's for not taking
     # the placer's most wanted pose (empty: the placer's own choice)
+    restart: bool = False  # the first step of the room solved again from empty (models.placement.reorder): what was
+    # placed before it is taken up
 
 
 StepObserver = Callable[[PlacementStep], None]

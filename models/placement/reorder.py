@@ -10,8 +10,8 @@ The new steps get every repair only if they meet as many constraints as the firs
 diagnosis plans every episode kept passed that screen, and 14 of the 24 not kept failed it). The new episode is kept
 if it meets more constraints, its energy rises by at most the polish's `ALLOWANCE`, it places every object the first
 one placed and it leaves no more task objects out of the robot's reach; its steps are then shown after the first
-one's, each giving that reason before its own. Measured in `app/bench/results/plan2place/broken-first/` (README,
-Plan2Place).
+one's, each giving that reason before its own, the first marked as a `restart` (the studio empties the room there).
+Measured in `app/bench/results/plan2place/broken-first/` (README, Plan2Place).
 """
 
 from __future__ import annotations
@@ -68,6 +68,6 @@ def broken_first(ep: Episode, repair: Repair, again: Steps, observer: StepObserv
         if not better(new, best):
             break
         best, why = new, AGAIN.format(", ".join(first))
-        for step in steps if observer is not None else ():
-            observer(dataclasses.replace(step, why=f"{why}; {step.why}" if step.why else why))
+        for k, step in enumerate(steps if observer is not None else ()):
+            observer(dataclasses.replace(step, why=f"{why}; {step.why}" if step.why else why, restart=k == 0))
     return best

@@ -47,12 +47,13 @@ class Stepping:
 
 def step_record(step: PlacementStep, index: int) -> dict:
     """One step as JSON-ready data: the pose (None when the object was left out), the energy terms after it,
-    why a repair moved it (or the reach guard chose it), how many candidates were legal, and the `TOP`
+    why a repair moved it (or the reach guard chose it), whether the room is solved again from empty at this step
+    (`restart`, models.placement.reorder), how many candidates were legal, and the `TOP`
     best-scored ones (x, z, rotation, score; Plan2Place's scores are the policy's probabilities)."""
     legal = [i for i, s in enumerate(step.scores) if math.isfinite(s)]
     best = sorted(legal, key=lambda i: -step.scores[i])[:TOP]
     return {"step": index, "object": step.object_id, "x": step.x, "z": step.z, "rotation": step.rotation,
-            "why": step.why, "terms": {k: round(v, 6) for k, v in step.terms.items()},
+            "why": step.why, "restart": step.restart, "terms": {k: round(v, 6) for k, v in step.terms.items()},
             "candidates": len(step.scores), "legal": len(legal),
             "top": [[*(round(float(v), 4) for v in step.candidates[i]), round(float(step.scores[i]), 6)]
                     for i in best]}
