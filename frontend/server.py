@@ -24,10 +24,15 @@ class Studio:
         self.server = viser.ViserServer(host=host, port=port, label="H3DS Studio", verbose=False)
         self.sessions: dict[int, StudioSession] = {}
         self.server.on_client_connect(self._connect)
-        self.server.on_client_disconnect(lambda c: self.sessions.pop(c.client_id, None))
+        self.server.on_client_disconnect(self._disconnect)
 
     def _connect(self, client: viser.ClientHandle) -> None:
         self.sessions[client.client_id] = StudioSession(client, self.pipeline, self.store)
+
+    def _disconnect(self, client: viser.ClientHandle) -> None:
+        session = self.sessions.pop(client.client_id, None)
+        if session is not None:
+            session.close()
 
     @property
     def port(self) -> int:

@@ -110,9 +110,15 @@ class StudioSession:
         self.controls = None
         self.selected: str | None = None
         self._last_live = 0.0
+        self.closed = False  # the tab has gone: nothing more is drawn
         self._run_js(camera.ORBIT_LIMIT_JS + UNSAVED_JS)
         self._build_gui()
         client.camera.on_update(self._camera_moved)
+
+    def close(self) -> None:
+        """The tab closed: stop the step animation, whose thread would otherwise draw into a closed connection."""
+        self.closed = True
+        self.state.playing = False
 
     # ---- GUI --------------------------------------------------------------------------------------
 
@@ -435,7 +441,7 @@ class StudioSession:
             self.step_md.content = "All objects shown."
 
     def _play(self) -> None:
-        while self.state.playing and self.state.shown < len(self.state.steps):
+        while self.state.playing and not self.closed and self.state.shown < len(self.state.steps):
             self._advance()
             time.sleep(max(0.0, 1.0 / float(self.speed.value) - 0.25))
         self.state.playing = False
@@ -471,6 +477,8 @@ class StudioSession:
         frames = max(2, min(8, int(20 / float(self.speed.value))))  # fewer frames when playing fast
         duration = min(0.25, 0.8 / float(self.speed.value))
         for k in range(1, frames + 1):
+            if self.closed:
+                return
             self.view.settle(obj, k / frames, start)
             time.sleep(duration / frames)
         if shown == len(steps):

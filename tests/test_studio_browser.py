@@ -140,3 +140,30 @@ def test_the_step_animation_replays_what_the_placer_did(browser, studio):
     assert moved_on > 0  # some steps showed an object where the placer put it before it moved on
     settle(page)
     page.screenshot(path=str(SCREENSHOTS / "replay-last-step.png"))
+
+
+def test_closing_the_tab_while_the_animation_plays_stops_it_quietly(browser, studio):
+    import threading
+    import time
+
+    failures, hook = [], threading.excepthook
+    threading.excepthook = failures.append
+    try:
+        before = set(studio.sessions)
+        page = open_studio(browser, studio)
+        session = session_of(studio, before)
+        generate(page, session, "Put a chilled bread on the counter", "kitchen")
+        page.get_by_role("tab", name="Placement").click()
+        session.speed.value = 2.0
+        page.get_by_role("button", name="Play").click()
+        page.get_by_text(re.compile(r"Step 2 / \d+")).wait_for(timeout=WAIT)
+        page.close()
+        for _ in range(50):  # the disconnect reaches the studio
+            if session.client.client_id not in studio.sessions:
+                break
+            time.sleep(0.1)
+        time.sleep(2.0)  # four more steps' worth, had the animation gone on
+        assert not session.state.playing and session.state.shown < len(session.state.steps)
+        assert not failures, [f.exc_value for f in failures]
+    finally:
+        threading.excepthook = hook
