@@ -261,7 +261,7 @@ class StudioSession:
             now = time.perf_counter()
             if now - last[0] > PROGRESS_S:
                 last[0] = now
-                self.progress.content = f"⏳ Placing objects: {len(steps)} placed so far (last `{step.object_id}`)…"
+                self.progress.content = placing_progress(steps)
         return observe
 
     # ---- generating -------------------------------------------------------------------------------
@@ -949,6 +949,14 @@ class StudioSession:
         else:
             self.client.send_file_download(f"{stem}.glb", glb_of(value), save_immediately=True)
         self.say(f"Downloaded `{stem}` ({'house JSON' if kind == 'house' else 'GLB'}).")
+
+
+def placing_progress(steps: list[PlacementStep]) -> str:
+    """The progress line while the placer works: how many steps so far and what it is doing (placing, repairing
+    objects placed before, or solving the room again from the start)."""
+    doing = "solving again from the start" if any(s.restart for s in steps) else \
+        "repairing" if len({s.object_id for s in steps}) < len(steps) else "placing"
+    return f"⏳ Placing objects: step {len(steps)}, {doing} (last `{steps[-1].object_id}`)…"
 
 
 def step_caption(steps: list[PlacementStep], shown: int, obj, room: str = "") -> str:

@@ -195,3 +195,14 @@ def test_the_energy_plot_follows_the_room_the_animation_shows():
     assert poses[1] == {"table-0": (2.0, 2.0, 90.0), "chair-0": (3.0, 2.0, 0.0)}
     assert poses[2] == {"table-0": (1.0, 1.0, 0.0)}  # the restart took the chair up
     assert poses[3] == {p.id: (p.x, p.z, p.rotation) for p in final}
+
+
+def test_the_progress_line_says_what_the_placer_is_doing():
+    from frontend.session import placing_progress
+
+    steps = [_step("table-0", (1.0, 1.0, 0.0)), _step("chair-0", (2.0, 1.0, 0.0))]
+    assert placing_progress(steps) == "⏳ Placing objects: step 2, placing (last `chair-0`)…"
+    steps.append(_step("table-0", (1.5, 1.0, 0.0)))
+    assert "step 3, repairing" in placing_progress(steps)
+    steps.append(_step("chair-0", (2.0, 2.0, 0.0), restart=True))
+    assert "step 4, solving again from the start" in placing_progress(steps)
