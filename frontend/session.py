@@ -446,19 +446,26 @@ class StudioSession:
             time.sleep(max(0.0, 1.0 / float(self.speed.value) - 0.25))
         self.state.playing = False
 
-    def _advance(self) -> None:
-        """Show the next step: heat-map of its candidates, then the object settling into the pose the step gave it
-        (at its last step, where it stands now: the designer may have moved it since; frontend.replay). In an
-        apartment every object settles where it stands now."""
+    def _next_step(self) -> tuple[PlacementStep, int] | None:
+        """Move the animation on by one step and show its candidates' heat-map: (the step, how many steps are shown
+        now), or None at the end."""
         with self.lock:
-            steps = self.state.steps
-            if self.state.shown >= len(steps):
-                return
-            step = steps[self.state.shown]
+            if self.state.shown >= len(self.state.steps):
+                return None
+            step = self.state.steps[self.state.shown]
             self.state.shown += 1
             shown = self.state.shown
         if self.heat.value:
             self.view.heat_map(step)
+        return step, shown
+
+    def _advance(self) -> None:
+        """Show the next step: heat-map of its candidates, then the object settling into the pose the step gave it
+        (at its last step, where it stands now: the designer may have moved it since; frontend.replay). In an
+        apartment every object settles where it stands now."""
+        if (next_step := self._next_step()) is None:
+            return
+        (step, shown), steps = next_step, self.state.steps
         room, start = "", None
         if self.apartment.current is not None:
             room = self.apartment.where(step)

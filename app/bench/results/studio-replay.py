@@ -21,16 +21,11 @@ RUNS = 6
 
 def final_poses(self: StudioSession) -> None:
     """The step animation before frontend/replay.py: each object dropped in where it stands now."""
-    with self.lock:
-        steps = self.state.steps
-        if self.state.shown >= len(steps):
-            return
-        step = steps[self.state.shown]
-        self.state.shown += 1
-    if self.heat.value:
-        self.view.heat_map(step)
+    if (next_step := self._next_step()) is None:
+        return
+    (step, shown), steps = next_step, self.state.steps
     obj = next((o for o in self.state.gen.scene.objects if o.id == step.object_id), None)
-    self.step_md.content = step_caption(steps, self.state.shown, obj)
+    self.step_md.content = step_caption(steps, shown, obj)
     if obj is None:
         return
     frames = max(2, min(8, int(20 / float(self.speed.value))))
@@ -38,7 +33,7 @@ def final_poses(self: StudioSession) -> None:
     for k in range(1, frames + 1):
         self.view.settle(obj, k / frames)
         time.sleep(duration / frames)
-    if self.state.shown == len(steps):
+    if shown == len(steps):
         self.view.heat_map(None)
 
 
