@@ -101,12 +101,17 @@ class ApartmentMode:
         s.say(f"Opened scene {scene_id}, version {number}: an apartment of {len(apartment.scenes)} rooms "
               f"(seed {stored['seed']}, solver `{stored['solver']}`).")
 
+    @staticmethod
+    def room_of(object_id: str) -> str:
+        """The room an apartment's object is placed in: its id's prefix (`r2-chair-0` -> `r2`)."""
+        return object_id.split("-", 1)[0]
+
     def _in_house(self, steps: list[PlacementStep]) -> list[PlacementStep]:
         """Each step's candidates moved from its room's frame to the house frame (for the heat-map)."""
         offsets = {hr.id.split("|")[1]: (hr.x, hr.z) for hr in self.current.floorplan.rooms}
         out = []
         for step in steps:
-            x, z = offsets[step.object_id.split("-", 1)[0][1:]]
+            x, z = offsets[self.room_of(step.object_id)[1:]]
             moved = step.candidates + np.array([x, z, 0.0]) if len(step.candidates) else step.candidates
             out.append(replace(step, candidates=moved, x=None if step.x is None else step.x + x,
                                z=None if step.z is None else step.z + z))
@@ -115,7 +120,7 @@ class ApartmentMode:
     def where(self, step: PlacementStep) -> str:
         """The step's room, e.g. `room 2 / 4 (kitchen): `."""
         rooms = self.current.floorplan.rooms
-        k = int(step.object_id.split("-", 1)[0][1:])
+        k = int(self.room_of(step.object_id)[1:])
         return f"room {k} / {len(rooms)} ({rooms[k - 1].room.type}): "
 
     def summary(self) -> str:
@@ -128,7 +133,9 @@ class ApartmentMode:
                 f"(E_nav {a.e_nav:.2f})" + (f"; unreachable: {', '.join(a.path.unreachable)}" if a.path.unreachable
                                            else ""))
 
-    def draw(self, visible: set[str] | None, labels: bool) -> None:
+    def draw(self, shown: Scene, visible: set[str] | None, labels: bool) -> None:
+        """The house: each room's shell and label, the markers, the objects of `shown` (the house as the step
+        animation shows it now; `visible`: the ids on show, None: all), the robot's path and the step's heat-map."""
         s, a = self.session, self.current
         with s.client.atomic():
             s.view.clear()
@@ -137,7 +144,7 @@ class ApartmentMode:
                 s.view.room_label(f"{hr.id.split('|')[1]}. {hr.room.type}", hr.x + hr.room.width / 2,
                                   hr.z + hr.room.depth / 2)
             s.view.draw_markers(self.scene)
-            s.view.draw_objects(self.scene, visible, labels)
+            s.view.draw_objects(shown, visible, labels)
             s.view.draw_path(a.path.points, PATH_COLOUR)
             shown, steps = s.state.shown, s.state.steps
             step = steps[shown - 1] if 0 < shown <= len(steps) else None

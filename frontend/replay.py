@@ -1,32 +1,49 @@
-"""The room as it stood after each placement step, for the studio's step animation and its energy plot to show what
-the placer did: each object where its step put it, moved by each repair step, taken up when the placer solves the
-room again from empty (`PlacementStep.restart`, models.placement.reorder), and, at its last step, where it stands
-now (a designer's move since the placing shows there)."""
+"""The room (or the apartment) as it stood after each placement step, for the studio's step animation and its energy
+plot to show what the placer did: each object where its step put it, moved by each repair step, taken up when the
+placer solves its room again from empty (`PlacementStep.restart`, models.placement.reorder), and, at its last step,
+where it stands now (a designer's move since the placing shows there). In an apartment each room is solved on its
+own: `room_of` tells which room an object is in, and a restart takes up only that room's objects."""
 
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 
 from models.placement import PlacementStep
 from models.values import Placement, Scene, SceneObject
 
 Pose = tuple[float, float, float]  # x, z, Unity yaw
+RoomOf = Callable[[str], str]  # object id -> the room it is placed in
 
 
-def since_restart(steps: Sequence[PlacementStep], shown: int) -> int:
-    """Where the episode of the first `shown` steps' last one begins: the last restart among them, else 0."""
-    return max((k for k in range(shown) if steps[k].restart), default=0)
+def one_room(_object_id: str) -> str:
+    return ""
 
 
-def standing(steps: Sequence[PlacementStep], shown: int) -> dict[str, Pose | None]:
+def standing(steps: Sequence[PlacementStep], shown: int, room_of: RoomOf = one_room) -> dict[str, Pose | None]:
     """The objects standing after the first `shown` steps, in the order they came: each with the pose its latest
     step gave it, or None at its last step of all (it stands where it is now); an object that step left out is
     not there."""
     last = {s.object_id: k for k, s in enumerate(steps)}
-    latest = {steps[k].object_id: k for k in range(since_restart(steps, shown), shown)}
+    latest: dict[str, int] = {}
+    for k, step in enumerate(steps[:shown]):
+        if step.restart:
+            room = room_of(step.object_id)
+            latest = {oid: i for oid, i in latest.items() if room_of(oid) != room}
+        latest[step.object_id] = k
     return {oid: None if k == last[oid] else (steps[k].x, steps[k].z, steps[k].rotation)
             for oid, k in latest.items() if steps[k].x is not None}
+
+
+def repeated(steps: Sequence[PlacementStep], shown: int, room_of: RoomOf = one_room) -> bool:
+    """Was the object of step `shown` (1-based) placed before in the same solve of its room (a repair's step)?"""
+    step = steps[shown - 1]
+    for before in reversed(steps[:shown - 1] if not step.restart else ()):
+        if before.object_id == step.object_id:
+            return True
+        if before.restart and room_of(before.object_id) == room_of(step.object_id):
+            return False
+    return False
 
 
 def moved_to(obj: SceneObject, pose: Pose) -> SceneObject:
@@ -44,19 +61,20 @@ def moved_to(obj: SceneObject, pose: Pose) -> SceneObject:
                                   "children": [carried(c) for c in obj.children]})
 
 
-def room_at(scene: Scene, steps: Sequence[PlacementStep], shown: int) -> tuple[Scene, set[str] | None]:
-    """`scene` as it stood after its first `shown` placement `steps`, and the ids on show then (the objects
-    standing and what stands on them); (`scene`, None: everything) once every step is shown."""
+def room_at(scene: Scene, steps: Sequence[PlacementStep], shown: int, room_of: RoomOf = one_room
+            ) -> tuple[Scene, set[str] | None]:
+    """`scene` as it stood after its first `shown` placement `steps` (in the scene's frame), and the ids on show
+    then (the objects standing and what stands on them); (`scene`, None: everything) once every step is shown."""
     if shown >= len(steps):
         return scene, None
-    now = standing(steps, shown)
+    now = standing(steps, shown, room_of)
     objects = [moved_to(o, now[o.id]) if now.get(o.id) is not None else o for o in scene.objects]
     visible = {i for o in objects if o.id in now for i in (o.id, *(c.id for c in o.children))}
     return scene.model_copy(update={"objects": objects}), visible
 
 
 def placements_at(placements: Sequence[Placement], steps: Sequence[PlacementStep], shown: int) -> list[Placement]:
-    """The layout's `placements` as they stood after the first `shown` steps (see `room_at`)."""
+    """A room's `placements` as they stood after its first `shown` steps (see `room_at`)."""
     by_id = {p.id: p for p in placements}
     return [by_id[oid] if pose is None else by_id[oid].model_copy(update=dict(zip(("x", "z", "rotation"), pose)))
             for oid, pose in standing(steps, shown).items() if oid in by_id]

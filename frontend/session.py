@@ -27,7 +27,7 @@ from frontend.apartment import ApartmentMode
 from frontend.checks import Finding, run_checks, summary
 from frontend.graph_image import render as render_graph
 from frontend.history import History
-from frontend.replay import placements_at, room_at, since_restart
+from frontend.replay import RoomOf, one_room, placements_at, repeated, room_at
 from frontend.view import SceneView, world
 from models.constraints import GLOBALS, RELATIONS, Constraint, read_constraints, write_constraints
 from models.energy.exact import layout_energy
@@ -345,7 +345,7 @@ class StudioSession:
 
     def redraw(self, labels: bool = True) -> None:
         if self.apartment.current is not None:
-            self.apartment.draw(self._visible(), labels)
+            self.apartment.draw(*self._shown(), labels)
             return
         gen = self.state.gen
         if gen is None:
@@ -353,20 +353,25 @@ class StudioSession:
         with self.client.atomic():
             self.view.clear()
             self.view.draw_room(gen.scene)
-            self.view.draw_objects(*room_at(gen.scene, self.state.steps, self.state.shown), labels)
+            self.view.draw_objects(*self._shown(), labels)
             step = self.state.steps[self.state.shown - 1] if 0 < self.state.shown <= len(self.state.steps) else None
             self.view.heat_map(step if self.heat.value and self.state.shown < len(self.state.steps) else None)
         self._place_controls()
 
+    def _room_of(self) -> RoomOf:
+        """Which room an object is placed in: an apartment's rooms are solved one by one."""
+        return self.apartment.room_of if self.apartment.current is not None else one_room
+
+    def _shown(self) -> tuple[Scene | None, set[str] | None]:
+        """The scene as the step animation shows it now (frontend.replay) and the ids on show (None: all)."""
+        scene = self.displayed()
+        if scene is None:
+            return None, None
+        return room_at(scene, self.state.steps, self.state.shown, self._room_of())
+
     def _visible(self) -> set[str] | None:
         """The ids on show in the step animation (None: all of them)."""
-        if self.apartment.current is None and self.state.gen is not None:
-            return room_at(self.state.gen.scene, self.state.steps, self.state.shown)[1]
-        if self.state.shown >= len(self.state.steps):
-            return None
-        placed_ids = {s.object_id for s in self.state.steps[:self.state.shown]}
-        scene = self.displayed()
-        return placed_ids | {c.id for o in scene.objects if o.id in placed_ids for c in o.children}
+        return self._shown()[1]
 
     def displayed(self) -> Scene | None:
         """The scene on screen: the generated room, or the whole apartment in the house frame."""
@@ -461,24 +466,19 @@ class StudioSession:
 
     def _advance(self) -> None:
         """Show the next step: heat-map of its candidates, then the object settling into the pose the step gave it
-        (at its last step, where it stands now: the designer may have moved it since; frontend.replay). In an
-        apartment every object settles where it stands now."""
+        (at its last step, where it stands now: the designer may have moved it since; frontend.replay)."""
         if (next_step := self._next_step()) is None:
             return
         (step, shown), steps = next_step, self.state.steps
-        room, start = "", None
-        if self.apartment.current is not None:
-            room = self.apartment.where(step)
-            obj = next((o for o in self.apartment.scene.objects if o.id == step.object_id), None)
-        else:
-            scene = self.state.gen.scene
-            (before, was), (after, now) = room_at(scene, steps, shown - 1), room_at(scene, steps, shown)
-            if step.restart:  # the room solved again from empty
-                self.view.hide(was - (now or {o.id for o in scene.all_objects()}))
-            obj = next((o for o in after.objects if o.id == step.object_id), None) if step.x is not None else None
-            if not step.restart and step.object_id in was:
-                start = next(o for o in before.objects if o.id == step.object_id)
-        self.step_md.content = step_caption(steps, shown, obj, room)
+        scene, room_of, start = self.displayed(), self._room_of(), None
+        (before, was), (after, now) = room_at(scene, steps, shown - 1, room_of), room_at(scene, steps, shown, room_of)
+        if step.restart:  # the room solved again from empty
+            self.view.hide(was - (now or {o.id for o in scene.all_objects()}))
+        obj = next((o for o in after.objects if o.id == step.object_id), None) if step.x is not None else None
+        if not step.restart and step.object_id in was:
+            start = next(o for o in before.objects if o.id == step.object_id)
+        room = self.apartment.where(step) if self.apartment.current is not None else ""
+        self.step_md.content = step_caption(steps, shown, obj, room, room_of)
         if obj is None:
             return
         frames = max(2, min(8, int(20 / float(self.speed.value))))  # fewer frames when playing fast
@@ -966,15 +966,14 @@ def placing_progress(steps: list[PlacementStep]) -> str:
     return f"⏳ Placing objects: step {len(steps)}, {doing} (last `{steps[-1].object_id}`)…"
 
 
-def step_caption(steps: list[PlacementStep], shown: int, obj, room: str = "") -> str:
+def step_caption(steps: list[PlacementStep], shown: int, obj, room: str = "", room_of: RoomOf = one_room) -> str:
     """The Placement tab's line for step number `shown` (1-based) of `steps`: the object, where it went (`obj`:
     the object as displayed, None if unplaced) and, for a repair's move or a guarded choice, its reason. A step
-    placing an object already placed in the same solve is a repair's (frontend.replay.since_restart)."""
+    placing an object already placed in the same solve of its room is a repair's (frontend.replay.repeated)."""
     step = steps[shown - 1]
     where = "no valid position (unplaced)" if obj is None else \
         f"x {obj.x:.2f} m, z {obj.z:.2f} m, facing {obj.rotation:.0f}°"
-    again = any(s.object_id == step.object_id for s in steps[since_restart(steps, shown):shown - 1])
-    doing = "repair: placing" if again else "placing"
+    doing = "repair: placing" if repeated(steps, shown, room_of) else "placing"
     why = f" ({step.why})" if step.why else ""
     return f"**Step {shown} / {len(steps)}**: {room}{doing} `{step.object_id}` at {where}{why}"
 

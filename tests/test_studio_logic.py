@@ -206,3 +206,20 @@ def test_the_progress_line_says_what_the_placer_is_doing():
     assert "step 3, repairing" in placing_progress(steps)
     steps.append(_step("chair-0", (2.0, 2.0, 0.0), restart=True))
     assert "step 4, solving again from the start" in placing_progress(steps)
+
+
+def test_in_an_apartment_a_solve_from_the_start_takes_up_only_its_own_rooms_objects():
+    from models.values import Scene
+    from frontend.apartment import ApartmentMode
+    from frontend.replay import repeated, room_at
+
+    scene = Scene.model_construct(objects=[_thing("r1-table-0", 1.0, 1.0), _thing("r2-chair-0", 6.0, 1.0),
+                                           _thing("r2-sofa-0", 7.0, 2.0)])
+    steps = [_step("r1-table-0", (1.0, 1.0, 0.0)), _step("r2-chair-0", (5.0, 1.0, 0.0)),
+             _step("r2-sofa-0", (6.5, 2.0, 0.0)), _step("r2-sofa-0", (7.0, 2.0, 0.0), restart=True),
+             _step("r2-chair-0", (6.0, 1.0, 0.0))]
+    room_of = ApartmentMode.room_of
+    _, visible = room_at(scene, steps, 4, room_of)
+    assert visible == {"r1-table-0", "r2-sofa-0"}  # room 1 stays; room 2 starts again from its sofa
+    assert [repeated(steps, k, room_of) for k in range(1, 6)] == [False, False, False, False, False]
+    assert repeated([*steps, _step("r2-sofa-0", (7.0, 2.5, 0.0))], 6, room_of)  # a repair in the new solve
