@@ -959,10 +959,9 @@ class StudioSession:
 
 
 def placing_progress(steps: list[PlacementStep]) -> str:
-    """The progress line while the placer works: how many steps so far and what it is doing (placing, repairing
-    objects placed before, or solving the room again from the start)."""
-    doing = "solving again from the start" if any(s.restart for s in steps) else \
-        "repairing" if len({s.object_id for s in steps}) < len(steps) else "placing"
+    """The progress line while the placer works: how many steps so far and whether the last one placed an object
+    or repaired one placed before in the same solve (frontend.replay.repeated)."""
+    doing = "repairing" if repeated(steps, len(steps)) else "placing"
     return f"⏳ Placing objects: step {len(steps)}, {doing} (last `{steps[-1].object_id}`)…"
 
 

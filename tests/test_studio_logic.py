@@ -205,7 +205,7 @@ def test_the_progress_line_says_what_the_placer_is_doing():
     steps.append(_step("table-0", (1.5, 1.0, 0.0)))
     assert "step 3, repairing" in placing_progress(steps)
     steps.append(_step("chair-0", (2.0, 2.0, 0.0), restart=True))
-    assert "step 4, solving again from the start" in placing_progress(steps)
+    assert "step 4, placing" in placing_progress(steps)  # the first step of a solve from the start
 
 
 def test_in_an_apartment_a_solve_from_the_start_takes_up_only_its_own_rooms_objects():
