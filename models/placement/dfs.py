@@ -17,12 +17,11 @@ from models.placement import blas
 from models.placement.base import Fixed, PlacementStep, StepObserver
 from models.placement.candidates import CandidateScorer, PlacedObject
 from models.placement.problem import PlacementProblem, time_budget
-from models.placement.result import make_layout
+from models.placement.result import NO_ROOM, make_layout
 from models.values import ConstraintPlan, Layout
 
 BRANCH = 3
 MIN_SPREAD = 0.3  # branches differ by at least this much (m), or by rotation
-NO_ROOM = "no collision-free position left in the room"
 
 
 class DFSSolver:

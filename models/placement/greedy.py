@@ -24,11 +24,10 @@ from models.geometry import SweptBoxes
 from models.placement.candidates import OVERLAP_TOL, CandidateScorer, PlacedObject, Shared
 from models.placement.problem import PlacementProblem
 from models.placement.reach import Reach
-from models.placement.result import make_layout
+from models.placement.result import NO_ROOM, make_layout
 from models.placement.ties import steady
 from models.values import ConstraintPlan, Layout, PlanObject
 
-NO_ROOM = "no collision-free position left in the room"
 GUARD_TRIES = 48  # Episode.guarded: candidates tried, most wanted first (Plan2Place's subset is 48)
 WALLS_OFF = "its most wanted pose would wall off a task object from the robot"  # a guarded step's reason
 

@@ -24,11 +24,12 @@ import numpy as np
 
 from models.energy.vectorised import CandidateEnergy
 from models.placement.base import StepObserver
-from models.placement.greedy import NO_ROOM, Episode
+from models.placement.greedy import Episode
 from models.placement.groups import regroup
 from models.placement.habits import keep_companions
 from models.placement.moves import displacements, legal_poses, move_step, scored
 from models.placement.polish import Move, Standing, exactly, polish
+from models.placement.result import NO_ROOM
 from models.placement.ties import steady
 
 ROUNDS, NEAR, CHECKS = 3, 4, 40  # restore_access

@@ -5,6 +5,8 @@ from __future__ import annotations
 from models.placement.problem import PlacementProblem
 from models.values import Layout, Placement, Provenance, Timing, Unplaced
 
+NO_ROOM = "no collision-free position left in the room"  # the reason of an object left out for want of room
+
 
 def make_layout(problem: PlacementProblem, poses: dict[str, tuple[float, float, float]], reasons: dict[str, str],
                 solver: str, seed: int, elapsed: float, default_reason: str) -> Layout:
