@@ -100,3 +100,4 @@ def test_reordering_a_problem_gives_the_order_a_fresh_problem_with_first_would(p
         problem = PlacementProblem.from_plan(plan, fixed)
         assert problem.reordered(first) == PlacementProblem.from_plan(plan, fixed, first).order != problem.order
         assert problem.reordered(()) == problem.order
+
