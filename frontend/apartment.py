@@ -133,9 +133,9 @@ class ApartmentMode:
                 f"(E_nav {a.e_nav:.2f})" + (f"; unreachable: {', '.join(a.path.unreachable)}" if a.path.unreachable
                                            else ""))
 
-    def draw(self, shown: Scene, visible: set[str] | None, labels: bool) -> None:
-        """The house: each room's shell and label, the markers, the objects of `shown` (the house as the step
-        animation shows it now; `visible`: the ids on show, None: all), the robot's path and the step's heat-map."""
+    def draw(self, house: Scene, visible: set[str] | None, labels: bool) -> None:
+        """The house: each room's shell and label, the markers, the objects of `house` (as the step animation shows
+        it now; `visible`: the ids on show, None: all), the robot's path and the step's heat-map."""
         s, a = self.session, self.current
         with s.client.atomic():
             s.view.clear()
@@ -144,7 +144,7 @@ class ApartmentMode:
                 s.view.room_label(f"{hr.id.split('|')[1]}. {hr.room.type}", hr.x + hr.room.width / 2,
                                   hr.z + hr.room.depth / 2)
             s.view.draw_markers(self.scene)
-            s.view.draw_objects(shown, visible, labels)
+            s.view.draw_objects(house, visible, labels)
             s.view.draw_path(a.path.points, PATH_COLOUR)
             shown, steps = s.state.shown, s.state.steps
             step = steps[shown - 1] if 0 < shown <= len(steps) else None
