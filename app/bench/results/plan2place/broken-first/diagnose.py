@@ -22,13 +22,13 @@ METRICS = (("cnt", 100, True, 2), ("key_nav", 100, True, 2), ("constraint_satisf
 VARIANTS = ("without", "broken first")
 
 
-def p50s(rows: list[dict], placers) -> list[str]:
-    """The PTO p50 per object of each set and placer, without -> with."""
+def p50s(rows: list[dict], placers, variants=VARIANTS) -> list[str]:
+    """The PTO p50 per object of each set and placer, the first variant -> the second."""
     out = []
     for label in dict.fromkeys(r["set"] for r in rows):
         for placer in placers:
             p50 = [statistics.median(r["pto_ms"] for r in rows if (r["set"], r["placer"], r["solver"]) ==
-                                     (label, placer, v)) for v in VARIANTS]
+                                     (label, placer, v)) for v in variants]
             out.append(f"- {label} / {placer}: {p50[0]:.2f} -> {p50[1]:.2f} ({100 * (p50[1] / p50[0] - 1):+.1f} %)")
     return out
 

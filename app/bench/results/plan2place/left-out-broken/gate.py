@@ -6,7 +6,6 @@ alternating in one process; writes `runs.json` and `result.md` here:
     PYTHONPATH=. python app/bench/results/plan2place/left-out-broken/gate.py
 """
 import json
-import statistics
 import sys
 from pathlib import Path
 
@@ -18,7 +17,7 @@ from models.placement.result import NO_ROOM
 
 HERE = Path(__file__).parent
 sys.path.insert(0, str(HERE.parent / "broken-first"))
-from diagnose import METRICS  # noqa: E402
+from diagnose import METRICS, p50s  # noqa: E402
 
 TAG = "left-out-broken"
 PLACERS = ("plan2place", "greedy")
@@ -63,16 +62,6 @@ def changed(rows: list[dict]) -> list[str]:
             for (s, placer, plan, seed), pair in by.items() if pair[VARIANTS[0]]["layout"] != pair[VARIANTS[1]]["layout"]]
 
 
-def p50s(rows: list[dict]) -> list[str]:
-    out = []
-    for label in dict.fromkeys(r["set"] for r in rows):
-        for placer in PLACERS:
-            p50 = [statistics.median(r["pto_ms"] for r in rows if (r["set"], r["placer"], r["solver"]) ==
-                                     (label, placer, v)) for v in VARIANTS]
-            out.append(f"- {label} / {placer}: {p50[0]:.2f} -> {p50[1]:.2f} ({100 * (p50[1] / p50[0] - 1):+.1f} %)")
-    return out
-
-
 def report(rows: list[dict]) -> str:
     moved = changed(rows)
     return "\n".join(["left out too - placed only: the difference, mean over the same (plan, seed) runs [95 % bootstrap "
@@ -80,7 +69,7 @@ def report(rows: list[dict]) -> str:
                       "one process); **bold** = better with the interval clear of 0, _italic_ = worse.", "",
                       *header("set / placer", METRICS), *variant_rows(rows, *VARIANTS, METRICS, PLACERS), "",
                       f"Layouts changed: {len(moved)} (new - old, metrics as fractions)", "", *moved, "",
-                      "PTO p50 per object (ms), placed only -> left out too:", "", *p50s(rows)]) + "\n"
+                      "PTO p50 per object (ms), placed only -> left out too:", "", *p50s(rows, PLACERS, VARIANTS)]) + "\n"
 
 
 if __name__ == "__main__":
