@@ -6,11 +6,16 @@ import json
 import re
 from pathlib import Path
 
+import numpy as np
 import pytest
 from studio_support import (SCREENSHOTS, WAIT, browser, choose, close_tabs, enter, field, open_studio,  # noqa: F401
                             session_of, studio)
 
 pytest.importorskip("playwright")
+
+from frontend.apartment import ApartmentMode  # noqa: E402
+from frontend.replay import room_at  # noqa: E402
+from frontend.view import world  # noqa: E402
 
 
 def test_apartment_in_the_studio(browser, studio):  # noqa: F811
@@ -48,6 +53,13 @@ def test_apartment_in_the_studio(browser, studio):  # noqa: F811
     while session.state.shown < len(session.state.steps):
         session._advance()
         rooms_in_order.append(session.step_md.content.split("room ")[1][0])
+        house, visible = room_at(session.displayed(), session.state.steps, session.state.shown, ApartmentMode.room_of)
+        on_show = {oid for oid, h in session.view.objects.items() if h.visible}
+        assert on_show == (visible if visible is not None else set(session.view.objects))
+        step = session.state.steps[session.state.shown - 1]
+        for o in house.objects if step.x is not None else ():  # the object it placed stands where the step put it
+            if o.id == step.object_id:
+                assert np.allclose(session.view.objects[o.id].position, world(o.x, o.y, o.z)), o.id
     assert rooms_in_order == sorted(rooms_in_order) and rooms_in_order[-1] == "3"  # room by room
 
     steps = len(session.state.steps)
