@@ -20,30 +20,31 @@ def one_room(_object_id: str) -> str:
     return ""
 
 
-def standing(steps: Sequence[PlacementStep], shown: int, room_of: RoomOf = one_room) -> dict[str, Pose | None]:
-    """The objects standing after the first `shown` steps, in the order they came: each with the pose its latest
-    step gave it, or None at its last step of all (it stands where it is now); an object that step left out is
-    not there."""
-    last = {s.object_id: k for k, s in enumerate(steps)}
+def _latest(steps: Sequence[PlacementStep], shown: int, room_of: RoomOf) -> dict[str, int]:
+    """Each object stepped in its room's current solve within the first `shown` steps -> its latest step's index, in
+    the order they came (a restart takes up its room's objects)."""
     latest: dict[str, int] = {}
     for k, step in enumerate(steps[:shown]):
         if step.restart:
             room = room_of(step.object_id)
             latest = {oid: i for oid, i in latest.items() if room_of(oid) != room}
         latest[step.object_id] = k
+    return latest
+
+
+def standing(steps: Sequence[PlacementStep], shown: int, room_of: RoomOf = one_room) -> dict[str, Pose | None]:
+    """The objects standing after the first `shown` steps, in the order they came: each with the pose its latest
+    step gave it, or None at its last step of all (it stands where it is now); an object that step left out is
+    not there."""
+    last = {s.object_id: k for k, s in enumerate(steps)}
     return {oid: None if k == last[oid] else (steps[k].x, steps[k].z, steps[k].rotation)
-            for oid, k in latest.items() if steps[k].x is not None}
+            for oid, k in _latest(steps, shown, room_of).items() if steps[k].x is not None}
 
 
 def repeated(steps: Sequence[PlacementStep], shown: int, room_of: RoomOf = one_room) -> bool:
     """Was the object of step `shown` (1-based) placed before in the same solve of its room (a repair's step)?"""
     step = steps[shown - 1]
-    for before in reversed(steps[:shown - 1] if not step.restart else ()):
-        if before.object_id == step.object_id:
-            return True
-        if before.restart and room_of(before.object_id) == room_of(step.object_id):
-            return False
-    return False
+    return not step.restart and step.object_id in _latest(steps, shown - 1, room_of)
 
 
 def moved_to(obj: SceneObject, pose: Pose) -> SceneObject:

@@ -473,7 +473,7 @@ class StudioSession:
         scene, room_of, start = self.displayed(), self._room_of(), None
         (before, was), (after, now) = room_at(scene, steps, shown - 1, room_of), room_at(scene, steps, shown, room_of)
         if step.restart:  # the room solved again from empty
-            self.view.hide(was - (now or {o.id for o in scene.all_objects()}))
+            self.view.hide(was - ({o.id for o in scene.all_objects()} if now is None else now))
         obj = next((o for o in after.objects if o.id == step.object_id), None) if step.x is not None else None
         if not step.restart and step.object_id in was:
             start = next(o for o in before.objects if o.id == step.object_id)
