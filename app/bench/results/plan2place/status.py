@@ -48,7 +48,7 @@ def verdicts(rows: list[dict], rng: np.random.Generator) -> list[str]:
     nav_gap = gap(rows, "key_nav", True, rng)
     nav_ok = at_least(*nav_gap)
     if key_nav < KEY_NAV_FLOOR:
-        nav_ok = f"missed ({key_nav:.1f} < {KEY_NAV_FLOOR:.0f}; {nav_ok.split(' (')[1][:-1]})"
+        nav_ok = f"missed ({key_nav:.1f} < {KEY_NAV_FLOOR:.0f}; {nav_gap[0]:+.2f} vs {nav_gap[3]})"
     oob = float(np.mean([r["oob"] for r in mine]))
     left_out = 1 - float(np.mean([r["cnt"] for r in mine]))  # OOB counts an object left out as outside
     collisions = sum(r["collisions"] for r in mine)
