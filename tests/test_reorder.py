@@ -101,3 +101,25 @@ def test_reordering_a_problem_gives_the_order_a_fresh_problem_with_first_would(p
         assert problem.reordered(first) == PlacementProblem.from_plan(plan, fixed, first).order != problem.order
         assert problem.reordered(()) == problem.order
 
+
+
+def test_the_second_solve_shares_the_first_ones_plan_only_parts_and_places_as_a_fresh_episode_would():
+    """`Episode(..., shares=)` reuses the problem, the candidates' geometry and the reach grid of the first solve
+    instead of making them again; its order and its steps are those of an episode made from the plan."""
+    plan = PLANS[ROOM]
+    first = episode(plan, 0)
+    ids = first_ids(first)
+
+    def stepped(ep: Episode) -> list[tuple]:
+        rng, steps = np.random.default_rng(SEED), []
+        while not ep.done:
+            opts = ep.options()
+            ep.apply(opts, int(np.argmin(opts.terms["total"] + rng.uniform(0, 1e-9, len(opts.feasible)))))
+            placed = ep.placed[-1]
+            steps.append((placed.id, placed.x, placed.z, placed.rotation))
+        return steps
+
+    fresh, shared = Episode(plan, first=ids), Episode(plan, first=ids, shares=first)
+    assert [o.id for o in shared.order] == [o.id for o in fresh.order] != [o.id for o in first.order]
+    assert shared.scorer._bodies is first.scorer._bodies and shared.reach is first.reach
+    assert stepped(shared) == stepped(fresh)

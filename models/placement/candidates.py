@@ -97,8 +97,15 @@ def front_boxes(x, z, rotation, width, depth, clearance: float) -> np.ndarray:
 
 
 class CandidateScorer:
-    def __init__(self, problem: PlacementProblem, step: float | None = None):
+    def __init__(self, problem: PlacementProblem, step: float | None = None, like: CandidateScorer | None = None):
+        """`like`: a scorer of the same plan (in another order, `PlacementProblem.with_first`) whose caches this one
+        shares: they hold what depends on the room and the objects only (candidates, their boxes, strips, and
+        whether they meet their global placement), and a second solve of the plan would make them again."""
         self.problem = problem
+        if like is not None:
+            assert like.problem.plan is problem.plan, "a scorer shares its caches only with one of the same plan"
+            self.__dict__.update({k: v for k, v in like.__dict__.items() if k != "problem"})
+            return
         room = problem.plan.room
         self.width, self.depth = room.width, room.depth
         self.step = step or (0.1 if room.width * room.depth <= 30 else 0.15)

@@ -74,9 +74,18 @@ def hard_filter(scorer: CandidateScorer, obj: PlanObject, placed: list[PlacedObj
 class Episode:
     """Objects placed one at a time in `problem.order`; fixed poses are taken as they are."""
 
-    def __init__(self, plan: ConstraintPlan, fixed: Fixed | None = None, first: Collection[str] = ()):
-        self.problem = PlacementProblem.from_plan(plan, fixed, first)
-        self.scorer = CandidateScorer(self.problem)
+    def __init__(self, plan: ConstraintPlan, fixed: Fixed | None = None, first: Collection[str] = (),
+                 shares: Episode | None = None):
+        """`shares`: an episode of the same plan and kept poses (the first solve, models.placement.reorder) whose
+        plan-only parts this one reuses instead of making them again: the problem read from the plan, the
+        candidates' geometry (`CandidateScorer`'s caches) and the navigation grid of the reach tests."""
+        if shares is None:
+            self.problem = PlacementProblem.from_plan(plan, fixed, first)
+            self.scorer = CandidateScorer(self.problem)
+        else:
+            self.problem = shares.problem.with_first(first)
+            self.scorer = CandidateScorer(self.problem, like=shares.scorer)
+            self.__dict__["reach"] = shares.reach  # the `reach` cached property, made already
         self.order = self.problem.order
         self.i = 0
         self.placed: list[PlacedObject] = []
@@ -265,15 +274,17 @@ def place_stepwise(plan: ConstraintPlan, rng: np.random.Generator, choose: Choos
         if repair:
             from models.placement.reorder import broken_first  # it builds on this module's Episode
             from models.placement.repair import repair as repair_layout
+            first_solve = ep
             ep = broken_first(ep, repair_layout, lambda first, seen: _steps(plan, copy.deepcopy(start), choose, fixed,
-                                                                             seen, first), observer)
+                                                                             seen, first, first_solve), observer)
     return ep
 
 
 def _steps(plan: ConstraintPlan, rng: np.random.Generator, choose: Choose, fixed: Fixed | None,
-           observer: StepObserver | None, first: Collection[str]) -> Episode:
-    """`place_stepwise`'s steps, with the objects of `first` placed as early as their targets allow."""
-    ep = Episode(plan, fixed, first)
+           observer: StepObserver | None, first: Collection[str], shares: Episode | None = None) -> Episode:
+    """`place_stepwise`'s steps, with the objects of `first` placed as early as their targets allow (`shares`:
+    `Episode`'s)."""
+    ep = Episode(plan, fixed, first, shares)
     while not ep.done:
         opts = ep.options()
         pick, probs, why = None, np.zeros(0), ""

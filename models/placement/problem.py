@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Collection
 from dataclasses import dataclass, field
 
@@ -62,6 +63,10 @@ class PlacementProblem:
         """The order `from_plan` gives with `first` placed as early as their targets allow, without reading the plan
         again."""
         return _fixed_first(_order(self.order, self.constraints, set(first)), self.fixed)
+
+    def with_first(self, first: Collection[str]) -> PlacementProblem:
+        """This problem in the order `reordered(first)`: what `from_plan` gives with `first`."""
+        return dataclasses.replace(self, order=self.reordered(first))
 
 
 def _fixed_first(order: list[PlanObject], fixed: Collection[str]) -> list[PlanObject]:
