@@ -3,7 +3,8 @@
 import numpy as np
 import pytest
 
-from models.constraints.evaluate import AROUND_MAX_GAP, FLOAT_TOL, NEAR_MAX, Poses, placement, relation
+from models.constraints.evaluate import AROUND_MAX_GAP, FLOAT_TOL, NEAR_MAX, Poses, placement, relation, relation_met
+from models.constraints.language import RELATIONS
 
 # B: a 2 m wide, 1 m deep table at (5, 5) facing +z (north).
 B = Poses.one(5, 5, 0, 2.0, 1.0)
@@ -87,3 +88,14 @@ def test_a_gap_off_a_threshold_in_the_last_bits_meets_it_and_a_real_miss_does_no
         assert bool(relation("around", chair, B, gap=np.array([gap]))[1][0]) == met, gap
     assert bool(relation("near", chair, B, gap=np.array([NEAR_MAX + 2e-16]))[1][0])
     assert not relation("near", chair, B, gap=np.array([NEAR_MAX + 1e-6]))[1][0]
+
+
+@pytest.mark.parametrize("name", RELATIONS)
+def test_relation_met_is_relations_satisfied_mask_for_every_pose_and_both_directions(name):
+    rng = np.random.default_rng(0)
+    n = 2000  # random poses around B on a 0.1 m grid, some of them on a threshold
+    xz = np.round(rng.uniform(2, 8, (2, n)), 1)
+    many = Poses(xz[0], xz[1], rng.choice([0.0, 90.0, 180.0, 270.0], n), 0.6, 0.4)
+    assert 0 < relation(name, many, B)[1].sum() < n  # both answers occur
+    assert np.array_equal(relation_met(name, many, B), relation(name, many, B)[1])
+    assert np.array_equal(relation_met(name, B, many), relation(name, B, many)[1])

@@ -95,46 +95,61 @@ def _relu(v):
 
 def relation(name: str, a: Poses, b: Poses, gap: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
     """(energy, satisfied) of `A name B` for every pose; `gap` overrides the box gap (exact polygons)."""
+    return _relation(name, a, b, gap, True)
+
+
+def relation_met(name: str, a: Poses, b: Poses) -> np.ndarray:
+    """Whether `A name B` holds for every pose: `relation`'s second half, without computing its energy (the
+    polish counts the constraints met by thousands of poses at a time)."""
+    return _relation(name, a, b, None, False)[1]
+
+
+def _relation(name: str, a: Poses, b: Poses, gap: np.ndarray | None, energy: bool
+              ) -> tuple[np.ndarray | None, np.ndarray]:
+    """(energy if `energy` else None, satisfied) of `A name B`: one definition of each relation for both."""
     def _gap(a, b):
         return gap if gap is not None else box_gap(a, b)
 
     if name == "near":
         g = _gap(a, b)
-        return _relu(g - NEAR_MAX), g <= NEAR_MAX + FLOAT_TOL
+        return _relu(g - NEAR_MAX) if energy else None, g <= NEAR_MAX + FLOAT_TOL
     if name == "far":
         g = _gap(a, b)
-        return _relu(FAR_MIN - g), g >= FAR_MIN - FLOAT_TOL
+        return _relu(FAR_MIN - g) if energy else None, g >= FAR_MIN - FLOAT_TOL
     if name in ("in front of", "behind"):
         ahead, lateral = _frame(a, b)
         if name == "behind":
             ahead = -ahead
         g = _gap(a, b)
         lat_max = b.width / 2 + LATERAL_SLACK
-        energy = _relu(b.depth / 2 - ahead) + _relu(np.abs(lateral) - lat_max) + _relu(g - FRONT_MAX_GAP)
         ok = (ahead > b.depth / 2) & (np.abs(lateral) <= lat_max + FLOAT_TOL) & (g <= FRONT_MAX_GAP + FLOAT_TOL)
-        return energy, ok
+        if not energy:
+            return None, ok
+        return _relu(b.depth / 2 - ahead) + _relu(np.abs(lateral) - lat_max) + _relu(g - FRONT_MAX_GAP), ok
     if name in ("side of", "left of", "right of"):
         ahead, lateral = _frame(a, b)
         side = {"side of": np.abs(lateral), "left of": -lateral, "right of": lateral}[name]
         g = _gap(a, b)
         ahead_max = b.depth / 2 + LATERAL_SLACK
-        energy = _relu(b.width / 2 - side) + _relu(np.abs(ahead) - ahead_max) + _relu(g - SIDE_MAX_GAP)
         ok = (side > b.width / 2) & (np.abs(ahead) <= ahead_max + FLOAT_TOL) & (g <= SIDE_MAX_GAP + FLOAT_TOL)
-        return energy, ok
+        if not energy:
+            return None, ok
+        return _relu(b.width / 2 - side) + _relu(np.abs(ahead) - ahead_max) + _relu(g - SIDE_MAX_GAP), ok
     if name == "face to":
         fx, fz = a.fronts()
         angle = _angle_between(fx, fz, b.x - a.x, b.z - a.z)
-        return _relu(angle - FACE_MAX_DEG) / 90.0, angle <= FACE_MAX_DEG + FLOAT_TOL
+        return _relu(angle - FACE_MAX_DEG) / 90.0 if energy else None, angle <= FACE_MAX_DEG + FLOAT_TOL
     if name == "face same as":
         diff = np.abs((a.rotation - b.rotation + 180.0) % 360.0 - 180.0)
-        return _relu(diff - FACE_MAX_DEG) / 90.0, diff <= FACE_MAX_DEG + FLOAT_TOL
+        return _relu(diff - FACE_MAX_DEG) / 90.0 if energy else None, diff <= FACE_MAX_DEG + FLOAT_TOL
     if name == "around":
         g = _gap(a, b)
-        face_e, face_ok = relation("face to", a, b)
-        return _relu(g - AROUND_MAX_GAP) + face_e, (g <= AROUND_MAX_GAP + FLOAT_TOL) & face_ok
+        face_e, face_ok = _relation("face to", a, b, None, energy)
+        ok = (g <= AROUND_MAX_GAP + FLOAT_TOL) & face_ok
+        return _relu(g - AROUND_MAX_GAP) + face_e if energy else None, ok
     if name == "center aligned":
         off = np.minimum(np.abs(a.x - b.x), np.abs(a.z - b.z))
-        return _relu(off - ALIGN_TOL), off <= ALIGN_TOL + FLOAT_TOL
+        return _relu(off - ALIGN_TOL) if energy else None, off <= ALIGN_TOL + FLOAT_TOL
     raise ValueError(f"unknown constraint {name!r}")
 
 

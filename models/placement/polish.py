@@ -28,7 +28,7 @@ from functools import cache, cached_property, lru_cache
 
 import numpy as np
 
-from models.constraints.evaluate import Poses, placement, relation
+from models.constraints.evaluate import Poses, placement, relation_met
 from models.energy.vectorised import CandidateEnergy
 from models.energy.weights import WEIGHTS
 from models.geometry import SweptBoxes
@@ -71,11 +71,11 @@ def met(ep: Episode, oid: str, idx: np.ndarray | None, others: list[PlacedObject
         by_id = {p.id: p for p in others}
         for c in oc.relations:
             if c.target in by_id:
-                count += relation(c.name, poses, _pose(by_id[c.target]))[1]
+                count += relation_met(c.name, poses, _pose(by_id[c.target]))
     for p in others:
         for c in objects[p.id].relations if p.id in objects else ():
             if c.target == oid:
-                count += relation(c.name, _pose(p), poses)[1]
+                count += relation_met(c.name, _pose(p), poses)
     return count
 
 
@@ -139,7 +139,7 @@ def _placement_met(name: str, shape: tuple, width: float, depth: float) -> bool:
 @lru_cache(maxsize=1 << 16)
 def _relation_met(name: str, a: tuple, b: tuple) -> bool:
     """Is `A name B` met by the poses a and b (x, z, rotation, width, depth)? Memoised as `_placement_met`."""
-    return bool(relation(name, Poses.one(*a), Poses.one(*b))[1][0])
+    return bool(relation_met(name, Poses.one(*a), Poses.one(*b))[0])
 
 
 def _legal_among(ep: Episode, oid: str, placed: list[PlacedObject], memo: dict
