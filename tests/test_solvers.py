@@ -168,3 +168,18 @@ def test_z3_stops_stating_a_model_that_outlasts_its_budget():
     poses, reasons = Z3Solver().run(model, ov, seed=0, seconds=0.001)
     assert poses == {} and set(reasons) == set(ov)
     assert all("could not state the model" in r for r in reasons.values())
+
+
+def test_z3_interrupted_in_its_check_leaves_every_object_out_with_a_reason(monkeypatch):
+    """The budget's timer interrupts Z3's Optimize; the interrupt can surface in `check()` as a Z3Exception
+    ("canceled", as seen on a `dense` plan in the placement bench), which must not end the solve."""
+    import z3
+
+    def canceled(self, *args):
+        raise z3.Z3Exception(b"canceled")
+
+    monkeypatch.setattr(z3.Optimize, "check", canceled)
+    p = plan(KITCHEN, KITCHEN_TEXT)
+    layout = get_solver("z3").solve(p, seed=0)
+    check(p, layout)
+    assert not layout.placements and all("canceled" in u.reason for u in layout.unplaced)

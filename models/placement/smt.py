@@ -63,6 +63,8 @@ class Z3Solver(ModelSolver):
         stop.start()
         try:
             result = opt.check()
+        except z3.Z3Exception as e:  # the timer's interrupt can reach check() as an exception ("canceled")
+            result = str(e.value.decode() if isinstance(e.value, bytes) else e.value)
         finally:
             stop.cancel()
         poses, reasons = {}, {}
