@@ -2,9 +2,8 @@
 
 from __future__ import annotations
 
-import dataclasses
 from collections.abc import Collection
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 from models.constraints import ConstraintSet, read_constraints
 from models.values import ConstraintPlan, PlanObject, Unplaced
@@ -66,7 +65,7 @@ class PlacementProblem:
 
     def with_first(self, first: Collection[str]) -> PlacementProblem:
         """This problem in the order `reordered(first)`: what `from_plan` gives with `first`."""
-        return dataclasses.replace(self, order=self.reordered(first))
+        return replace(self, order=self.reordered(first))
 
 
 def _fixed_first(order: list[PlanObject], fixed: Collection[str]) -> list[PlanObject]:
