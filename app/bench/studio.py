@@ -49,6 +49,22 @@ def _field(page, label: str):
                         "/ancestor::div[contains(@class, 'mantine-Flex-root')][1]").first.locator("input, textarea").first
 
 
+def studio_page(browser, studio):
+    """A tab of `studio`, once its Generate button is there."""
+    page = browser.new_page(viewport={"width": 1400, "height": 900})
+    page.goto(f"http://127.0.0.1:{studio.port}")
+    page.get_by_role("button", name="Generate").wait_for(timeout=30_000)
+    return page
+
+
+def fill_in(page, text: str, room: str, seed: int) -> None:
+    """The designer types the instruction and the seed and picks the room type (Generate not yet clicked)."""
+    _field(page, "Instruction").fill(text)
+    _field(page, "Seed").fill(str(seed))
+    _field(page, "Room type").click()
+    page.get_by_role("option", name=room).first.click()
+
+
 FRESH_TABS = 3  # per variant
 WATCH_JS = """n => {
   const t = window.__firstRender = {t0: performance.now()};
@@ -143,15 +159,10 @@ def main(args) -> int:
             for k in range(2 * FRESH_TABS):
                 baseline = bool(k % 2)
                 fresh[baseline].append(first_render(browser, studio, baseline))
-            page = browser.new_page(viewport={"width": 1400, "height": 900})
-            page.goto(f"http://127.0.0.1:{studio.port}")
-            page.get_by_role("button", name="Generate").wait_for(timeout=30_000)
+            page = studio_page(browser, studio)
             waits, around = [], []
             for i, (text, room) in enumerate(items):
-                _field(page, "Instruction").fill(text)
-                _field(page, "Seed").fill(str(i + 1))
-                _field(page, "Room type").click()
-                page.get_by_role("option", name=room).first.click()
+                fill_in(page, text, room, i + 1)
                 t0 = time.perf_counter()
                 page.get_by_role("button", name="Generate").click()
                 page.get_by_text(re.compile(rf"Scene ready \(#{2 * i + 1}\)|Error")).wait_for(timeout=60_000)

@@ -4,7 +4,7 @@ the browser shows that line (the browser taking in and drawing what was sent bef
 PYTHONPATH=. python app/bench/results/studio-latency.py 20 > app/bench/results/studio-latency.txt"""
 import re, sys, tempfile, time, statistics
 from app.bench.generate import pick_instructions
-from app.bench.studio import ARGS, _field
+from app.bench.studio import ARGS, fill_in, studio_page
 from app.pipeline import Pipeline
 from models.language import RuleParser
 from playwright.sync_api import sync_playwright
@@ -28,16 +28,10 @@ with tempfile.TemporaryDirectory() as tmp:
     studio = Studio("127.0.0.1", 28090, Store(f"sqlite:///{tmp}/b.db"), pipeline)
     with sync_playwright() as p:
         browser = p.chromium.launch(executable_path="/usr/bin/chromium", args=ARGS)
-        page = browser.new_page(viewport={"width": 1400, "height": 900})
-        page.goto(f"http://127.0.0.1:{studio.port}")
-        page.get_by_role("button", name="Generate").wait_for(timeout=30_000)
+        page = studio_page(browser, studio)
         rows, parts = [], []
         for i, (text, room) in enumerate(items):
-            _field(page, "Instruction").fill(text)
-            _field(page, "Seed").fill(str(i + 1))
-            _field(page, "Room type").click()
-            page.get_by_role("option", name=room).first.click()
-            session = studio.sessions[max(studio.sessions)]
+            fill_in(page, text, room, i + 1)
             t0 = time.perf_counter()
             page.get_by_role("button", name="Generate").click()
             loc = page.get_by_text(re.compile(rf"Scene ready \(#{i + 1}\)"))
