@@ -64,7 +64,7 @@ class Z3Solver(ModelSolver):
         try:
             result = opt.check()
         except z3.Z3Exception as e:  # the timer's interrupt can reach check() as an exception ("canceled")
-            result = str(e.value.decode() if isinstance(e.value, bytes) else e.value)
+            result = e.value.decode() if isinstance(e.value, bytes) else str(e.value)
         finally:
             stop.cancel()
         poses, reasons = {}, {}
