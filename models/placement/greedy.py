@@ -283,14 +283,16 @@ def place_stepwise(plan: ConstraintPlan, rng: np.random.Generator, choose: Choos
 def _steps(plan: ConstraintPlan, rng: np.random.Generator, choose: Choose, fixed: Fixed | None,
            observer: StepObserver | None, first: Collection[str], shares: Episode | None = None) -> Episode:
     """`place_stepwise`'s steps, with the objects of `first` placed as early as their targets allow (`shares`:
-    `Episode`'s)."""
-    ep = Episode(plan, fixed, first, shares)
+    `Episode`'s); an object that finds no room may send it a few steps back (models.placement.backtrack)."""
+    from models.placement import backtrack as bt  # it builds on this module's Episode
+    ep, steps = Episode(plan, fixed, first, shares), bt.recent()
     while not ep.done:
         opts = ep.options()
-        pick, probs, why = None, np.zeros(0), ""
-        if len(opts.feasible):
-            pick, probs, why = choose(ep, opts, rng)
-        ep.apply(opts, pick)
-        if observer is not None:
-            observer(ep.step_record(opts, pick, probs, why))
+        found = None if len(opts.feasible) else bt.backtrack(ep, opts, steps, choose, rng)
+        if found is not None:
+            ep, steps, records = found
+        else:
+            records = [bt.take(ep, opts, choose, rng, steps)]
+        for record in records if observer is not None else ():
+            observer(record)
     return ep
