@@ -6,7 +6,8 @@ When the object to place has no legal pose, `backtrack` goes back one step, then
 a step back whose room (the objects placed before it) has no legal pose for the object either; otherwise it tries
 that step's object at its next most wanted poses (the placer's probabilities, then energy), the first `TRIES` of
 those that leave one of the object's legal poses clear and keep every task object reachable, and places the objects
-after it again by the placer's own choice. It takes the first try after which the object has a legal pose and, once
+after it again by the placer's own choice, each kept off the last of the object's legal poses if one of its 48 most
+wanted poses leaves that clear (the reach guard's way, `Episode.guarded`). It takes the first try after which the object has a legal pose and, once
 placed there by the placer, leaves no more task objects out of the robot's reach and a lower step energy than leaving
 it out. It runs only when an object would be left out, and tries at most `DEPTH` x `TRIES` poses.
 Measured in `app/bench/results/plan2place/backtrack/` (README, Plan2Place).
@@ -16,24 +17,20 @@ from __future__ import annotations
 
 import collections
 import dataclasses
-from collections.abc import Callable
 
 import numpy as np
 
 from models.geometry import overlap_many
 from models.placement.base import PlacementStep
 from models.placement.candidates import OVERLAP_TOL
-from models.placement.greedy import GUARD_TRIES, Episode, Options
+from models.placement.greedy import GUARD_TRIES, Choose, Episode, Options
 from models.placement.moves import legal_poses
 from models.placement.ties import steady
 
 DEPTH = 4  # steps gone back at most (0: never)
 TRIES = 6  # poses tried per step gone back
-ROOM_SHOWN = 200  # how many of the object's legal poses a tried pose is checked against (the first ones)
+ROOM_CHECKED = 200  # how many of the object's legal poses a tried pose is checked against (the first ones)
 AGAIN = "placed again to make room for {}"  # the reason on the steps done again
-
-Choose = Callable[[Episode, Options, np.random.Generator], tuple[int, np.ndarray, str]]
-
 
 @dataclasses.dataclass(frozen=True)
 class Taken:
@@ -78,7 +75,7 @@ def backtrack(ep: Episode, opts: Options, steps: collections.deque[Taken], choos
         room = body[legal_poses(back.before, opts.obj, back.before.placed, cands, scorer.swept(opts.obj))]
         if not len(room):
             continue
-        for alt in _alternatives(back, room[:ROOM_SHOWN]):
+        for alt in _alternatives(back, room[:ROOM_CHECKED]):
             again = collections.deque(list(steps)[:-d], maxlen=DEPTH)
             twin, records = _again(back, int(alt), ep.i, choose, rng, again, room)
             if twin is not None and _better(twin, left_out):
