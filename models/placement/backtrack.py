@@ -7,9 +7,10 @@ a step back whose room (the objects placed before it) has no legal pose for the 
 that step's object at its next most wanted poses (the placer's probabilities, then energy), the first `TRIES` of
 those that leave one of the object's legal poses clear and keep every task object reachable, and places the objects
 after it again by the placer's own choice, each kept off the last of the object's legal poses if one of its 48 most
-wanted poses leaves that clear (the reach guard's way, `Episode.guarded`). It takes the first try after which the object has a legal pose and, once
-placed there by the placer, leaves no more task objects out of the robot's reach and a lower step energy than leaving
-it out. It runs only when an object would be left out, and tries at most `DEPTH` x `TRIES` poses.
+wanted poses leaves that clear (the reach guard's way, `Episode.guarded`). It takes the first try after which the
+object has a legal pose and, once placed there by the placer, leaves no more task objects out of the robot's reach
+and a lower step energy than leaving it out. It runs only when an object would be left out, and tries at most
+`DEPTH` x `TRIES` poses.
 Measured in `app/bench/results/plan2place/backtrack/` (README, Plan2Place).
 """
 
@@ -31,6 +32,7 @@ DEPTH = 4  # steps gone back at most (0: never)
 TRIES = 6  # poses tried per step gone back
 ROOM_CHECKED = 200  # how many of the object's legal poses a tried pose is checked against (the first ones)
 AGAIN = "placed again to make room for {}"  # the reason on the steps done again
+
 
 @dataclasses.dataclass(frozen=True)
 class Taken:

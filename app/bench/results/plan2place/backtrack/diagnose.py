@@ -22,12 +22,13 @@ PLACERS = ("plan2place", "greedy")
 
 if __name__ == "__main__":
     plan_sets = {ds: (diagnosis_plans(ds, 20), range(2)) for ds in sys.argv[1:] or SETS}
-    rows = alternating(plan_sets, backtrack, "DEPTH", dict(zip(VARIANTS, (0, backtrack.DEPTH))), METRICS, PLACERS)
+    variants = dict(zip(VARIANTS, (0, backtrack.DEPTH)))
+    rows = alternating(plan_sets, backtrack, "DEPTH", variants, METRICS, PLACERS)
     (HERE / "diagnose.json").write_text(json.dumps(rows))
-    report = "\n".join([f"backtrack (DEPTH {backtrack.DEPTH}, TRIES {backtrack.TRIES}) - without, diagnosis plans, mean "
-                        "over the same (plan, seed) runs [95 % bootstrap interval over plans]; metrics x 100, energy as "
-                        "is, PTO in ms per object (the two alternating in one process); **bold** = better with the "
-                        "interval clear of 0, _italic_ = worse.", "",
+    report = "\n".join([f"backtrack (DEPTH {backtrack.DEPTH}, TRIES {backtrack.TRIES}) - without, diagnosis plans, "
+                        "mean over the same (plan, seed) runs [95 % bootstrap interval over plans]; metrics x 100, "
+                        "energy as is, PTO in ms per object (the two alternating in one process); **bold** = better "
+                        "with the interval clear of 0, _italic_ = worse.", "",
                         *header("set / placer", METRICS), *variant_rows(rows, *VARIANTS, METRICS, PLACERS), "",
                         "PTO p50 per object (ms), without -> with:", "", *p50s(rows, PLACERS, VARIANTS)]) + "\n"
     (HERE / "diagnose.md").write_text(report)

@@ -28,8 +28,10 @@ PLACERS = ("plan2place", "greedy")
 
 def run() -> list[dict]:
     plan_sets = {ds: (fresh_plans(ds, TAG, 48), range(5)) if ds == "dense" else
-                 (fresh_plans(ds, TAG, 24) if ds != "human" else group_moves_gate.human_plans(), range(2)) for ds in SETS}
-    return alternating(plan_sets, backtrack, "DEPTH", dict(zip(VARIANTS, (0, backtrack.DEPTH))), METRICS, PLACERS)
+                 (group_moves_gate.human_plans() if ds == "human" else fresh_plans(ds, TAG, 24), range(2))
+                 for ds in SETS}
+    variants = dict(zip(VARIANTS, (0, backtrack.DEPTH)))
+    return alternating(plan_sets, backtrack, "DEPTH", variants, METRICS, PLACERS)
 
 
 def report(rows: list[dict]) -> str:
