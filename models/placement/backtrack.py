@@ -62,6 +62,14 @@ def take(ep: Episode, opts: Options, choose: Choose, rng: np.random.Generator, s
     return ep.step_record(opts, pick, probs, why)
 
 
+def step(ep: Episode, opts: Options, choose: Choose, rng: np.random.Generator, steps: collections.deque[Taken]
+         ) -> tuple[Episode, collections.deque[Taken], list[PlacementStep]]:
+    """One step of a step-wise placer, going back if `opts`'s object has no legal pose and a try gives it room: (the
+    episode, its recent steps, the records of the steps taken, this object's last)."""
+    found = None if len(opts.feasible) else backtrack(ep, opts, steps, choose, rng)
+    return found if found is not None else (ep, steps, [take(ep, opts, choose, rng, steps)])
+
+
 def backtrack(ep: Episode, opts: Options, steps: collections.deque[Taken], choose: Choose,
               rng: np.random.Generator) -> tuple[Episode, collections.deque[Taken], list[PlacementStep]] | None:
     """`opts`'s object has no legal pose in `ep`: (an episode gone back and stepped again to it, with it placed; its

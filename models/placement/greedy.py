@@ -254,6 +254,7 @@ class GreedySolver:
 
 
 Choose = Callable[[Episode, Options, np.random.Generator], tuple[int, np.ndarray, str]]
+Step = Callable[..., tuple[Episode, object, list[PlacementStep]]]  # backtrack.step's signature
 
 
 def tie_broken(opts: Options, rng: np.random.Generator) -> np.ndarray:
@@ -265,34 +266,35 @@ def place_stepwise(plan: ConstraintPlan, rng: np.random.Generator, choose: Choos
                    observer: StepObserver | None = None, repair: bool = True) -> Episode:
     """One episode of a step-wise placer (greedy, look-ahead, Plan2Place): at each step with a legal candidate,
     `choose(episode, options, rng)` gives (pick among the feasible candidates, probabilities for the heat-map, the
-    step's reason); each step is observed; then, with `repair`, the repairs, and the episode solved again with the
-    objects of broken constraints first, if that is better (models.placement.reorder; from the same random state).
+    step's reason); each step is observed; then, with `repair`, the repairs, the episode solved again with the
+    objects of broken constraints first, if that is better (models.placement.reorder), and solved again with every
+    task object kept reachable, if that is better (models.placement.reach_kept); each from the same random state.
     All of it on one BLAS thread (models.placement.blas)."""
     with blas.one_blas_thread():
         start = copy.deepcopy(rng)
         ep = _steps(plan, rng, choose, fixed, observer, ())
         if repair:
-            from models.placement.reorder import broken_first  # it builds on this module's Episode
+            from models.placement.reach_kept import kept_step, solve_keeping  # they build on this module's Episode
+            from models.placement.reorder import broken_first
             from models.placement.repair import repair as repair_layout
             first_solve = ep
             ep = broken_first(ep, repair_layout, lambda first, seen: _steps(plan, copy.deepcopy(start), choose, fixed,
                                                                              seen, first, first_solve), observer)
+            ep = solve_keeping(ep, repair_layout, lambda seen: _steps(plan, copy.deepcopy(start), choose, fixed, seen,
+                                                                      (), first_solve, kept_step), observer)
     return ep
 
 
 def _steps(plan: ConstraintPlan, rng: np.random.Generator, choose: Choose, fixed: Fixed | None,
-           observer: StepObserver | None, first: Collection[str], shares: Episode | None = None) -> Episode:
+           observer: StepObserver | None, first: Collection[str], shares: Episode | None = None,
+           step: Step | None = None) -> Episode:
     """`place_stepwise`'s steps, with the objects of `first` placed as early as their targets allow (`shares`:
-    `Episode`'s); an object that finds no room may send it a few steps back (models.placement.backtrack)."""
+    `Episode`'s); each made by `step` (default: models.placement.backtrack's, where an object that finds no room
+    may send the placer a few steps back)."""
     from models.placement import backtrack as bt  # it builds on this module's Episode
-    ep, steps = Episode(plan, fixed, first, shares), bt.recent()
+    ep, steps, step = Episode(plan, fixed, first, shares), bt.recent(), step or bt.step
     while not ep.done:
-        opts = ep.options()
-        found = None if len(opts.feasible) else bt.backtrack(ep, opts, steps, choose, rng)
-        if found is not None:
-            ep, steps, records = found
-        else:
-            records = [bt.take(ep, opts, choose, rng, steps)]
+        ep, steps, records = step(ep, ep.options(), choose, rng, steps)
         for record in records if observer is not None else ():
             observer(record)
     return ep
