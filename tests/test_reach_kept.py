@@ -12,6 +12,7 @@ from models.placement import reach_kept
 from models.placement.greedy import _steps
 from models.placement.plan2place.policy import place, shipped_policy, shipped_weights
 from models.placement.reach_kept import AGAIN, WALLS, better, kept_step, out_of_reach
+from models.placement.result import NO_ROOM
 
 PLANS = {r.plan.id: r.plan for r in load_dataset("dense")}
 ROOM = "dense-00658"  # 11 objects; Plan2Place places all of them and cuts its one task object off
@@ -37,7 +38,7 @@ def test_a_task_object_cut_off_is_reached_by_the_solve_that_keeps_the_way_open_a
     assert out_of_reach(first) > 0 and out_of_reach(kept) < out_of_reach(first)
     assert energy(plan, kept) < energy(plan, first)
     # what it left out says why; its steps follow the first solve's, from an empty room
-    assert kept.failed and set(kept.failed.values()) <= {WALLS, "no collision-free position left in the room"}
+    assert kept.failed and set(kept.failed.values()) <= {WALLS, NO_ROOM}
     assert WALLS in kept.failed.values()
     restart = next(k for k, r in enumerate(records) if r.restart)
     assert records[restart].why.startswith(AGAIN) and all(r.why.startswith(AGAIN) for r in records[restart:])
