@@ -101,3 +101,18 @@ def test_variants_alternate_run_by_run_and_the_value_they_change_is_put_back():
                       metrics, placers=("greedy",))
     assert off[0]["layout"] != off[1]["layout"]  # the polish moves something on this plan: layouts tell it
     assert "(1 runs, 0 layouts unchanged)" in variant_rows(off, "off", "on", metrics, placers=("greedy",))[0]
+
+
+def test_a_gate_report_pairs_the_variants_and_shows_each_placers_p50_change():
+    from app.bench.gates import METRICS, variant_report
+
+    def row(solver, plan, ms, cnt):
+        return {"set": "dense", "placer": "greedy", "solver": solver, "plan": plan, "seed": 0, "layout": plan + solver,
+                "cnt": cnt, "key_nav": 1.0, "constraint_satisfaction": 0.5, "energy": 1.0, "realism": 0.5,
+                "pto_ms": ms}
+    rows = [row("off", "p1", 10.0, 1.0), row("on", "p1", 15.0, 0.9), row("off", "p2", 20.0, 1.0),
+            row("on", "p2", 25.0, 0.8)]
+    report = variant_report("the change", "made-up plans", rows, ("off", "on"), ("greedy",), METRICS)
+    assert report.startswith("the change - without, made-up plans, mean over the same (plan, seed) runs")
+    assert "| dense / greedy (2 runs, 0 layouts unchanged) | _-15.00" in report  # CNT falls: worse
+    assert "- dense / greedy: 15.00 -> 20.00 (+33.3 %)" in report

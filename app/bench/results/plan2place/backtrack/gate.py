@@ -5,44 +5,18 @@ and `result.md` here.
 
     PYTHONPATH=. python app/bench/results/plan2place/backtrack/gate.py
 """
-import importlib.util
-import sys
 from pathlib import Path
 
-from app.bench.paired import alternating, header, store, variant_rows
-from models.datasets.fresh import fresh_plans
+from app.bench.gates import METRICS, fresh_sets, variant_report
+from app.bench.paired import alternating, store
 from models.placement import backtrack
 
 HERE = Path(__file__).parent
-sys.path.insert(0, str(HERE.parent / "broken-first"))
-from diagnose import METRICS, SETS, p50s  # noqa: E402  (broken-first's)
-
-_spec = importlib.util.spec_from_file_location("group_moves_gate", HERE.parent / "group-moves" / "gate.py")
-group_moves_gate = importlib.util.module_from_spec(_spec)
-_spec.loader.exec_module(group_moves_gate)
-
-TAG = "backtrack"
 VARIANTS = ("without", "backtrack")
 PLACERS = ("plan2place", "greedy")
 
-
-def run() -> list[dict]:
-    plan_sets = {ds: (fresh_plans(ds, TAG, 48), range(5)) if ds == "dense" else
-                 (group_moves_gate.human_plans() if ds == "human" else fresh_plans(ds, TAG, 24), range(2))
-                 for ds in SETS}
-    variants = dict(zip(VARIANTS, (0, backtrack.DEPTH)))
-    return alternating(plan_sets, backtrack, "DEPTH", variants, METRICS, PLACERS)
-
-
-def report(rows: list[dict]) -> str:
-    return "\n".join([f"backtrack (DEPTH {backtrack.DEPTH}, TRIES {backtrack.TRIES}) - without, fresh plans, mean over "
-                      "the same (plan, seed) runs [95 % bootstrap interval over plans]; metrics x 100, energy as is, "
-                      "PTO in ms per object (the two alternating in one process); **bold** = better with the interval "
-                      "clear of 0, _italic_ = worse.", "",
-                      *header("set / placer", METRICS), *variant_rows(rows, *VARIANTS, METRICS, PLACERS), "",
-                      "PTO p50 per object (ms), without -> with:", "", *p50s(rows, PLACERS, VARIANTS)]) + "\n"
-
-
 if __name__ == "__main__":
-    runs = run()
-    store(HERE, runs, report(runs))
+    runs = alternating(fresh_sets("backtrack"), backtrack, "DEPTH", dict(zip(VARIANTS, (0, backtrack.DEPTH))), METRICS,
+                       PLACERS)
+    store(HERE, runs, variant_report(f"backtrack (DEPTH {backtrack.DEPTH}, TRIES {backtrack.TRIES})", "fresh plans",
+                                     runs, VARIANTS, PLACERS))

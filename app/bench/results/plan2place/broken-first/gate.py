@@ -38,7 +38,7 @@ def report(rows: list[dict]) -> str:
                       "interval over plans]; metrics x 100, energy as is, PTO in ms per object (the two alternating in "
                       "one process); **bold** = better with the interval clear of 0, _italic_ = worse.", "",
                       *header("set / placer", METRICS), *variant_rows(rows, *VARIANTS, METRICS, PLACERS), "",
-                      "PTO p50 per object (ms), without -> with:", "", *p50s(rows, PLACERS)]) + "\n"
+                      "PTO p50 per object (ms), without -> with:", "", *p50s(rows, PLACERS, VARIANTS)]) + "\n"
 
 
 if __name__ == "__main__":

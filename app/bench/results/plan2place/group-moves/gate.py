@@ -6,8 +6,8 @@ plans (tag `group-moves`, 24 per set, 2 seeds; `human`: `human_plans`), alternat
 """
 from pathlib import Path
 
+from app.bench.gates import human_rooms as human_plans
 from app.bench.paired import alternating, header, store, variant_rows
-from models.datasets import load_dataset
 from models.datasets.fresh import fresh_plans
 from models.placement import groups
 
@@ -16,12 +16,6 @@ TAG = "group-moves"
 SETS = ("seen", "unseen_a", "unseen_b", "dense", "human")
 METRICS = (("energy", 1, False, 3), ("constraint_satisfaction", 100, True, 2), ("cnt", 100, True, 2),
            ("key_nav", 100, True, 2), ("realism", 100, True, 2), ("pto_ms", 1, False, 2))
-
-
-def human_plans() -> list:
-    """The iTHOR rooms have no fresh recipe: 24 off the placement bench's sample (index % 6 == 0), the diagnosis plans
-    (3) and the grid critic's gate (1, 4)."""
-    return [r.plan for i, r in enumerate(load_dataset("human")) if i % 6 in (2, 5)][:24]
 
 
 def run() -> list[dict]:

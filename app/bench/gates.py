@@ -1,0 +1,49 @@
+"""What the A/B experiments on the step-wise placers share (`app/bench/results/plan2place/*/diagnose.py`, `gate.py`):
+the sets and metrics they judge, the plans of a fresh gate, and their report (a variant minus the placer without it,
+paired over the same runs, then the PTO p50s)."""
+
+from __future__ import annotations
+
+import statistics
+
+from app.bench.paired import header, variant_rows
+from models.datasets import load_dataset
+from models.datasets.fresh import fresh_plans
+
+SETS = ("seen", "unseen_a", "unseen_b", "dense", "human")
+METRICS = (("cnt", 100, True, 2), ("key_nav", 100, True, 2), ("constraint_satisfaction", 100, True, 2),
+           ("energy", 1, False, 3), ("realism", 100, True, 2), ("pto_ms", 1, False, 2))
+
+
+def human_rooms() -> list:
+    """The iTHOR rooms have no fresh recipe: 24 off the placement bench's sample (index % 6 == 0), the diagnosis plans
+    (3) and the grid critic's gate (1, 4)."""
+    return [r.plan for i, r in enumerate(load_dataset("human")) if i % 6 in (2, 5)][:24]
+
+
+def fresh_sets(tag: str) -> dict:
+    """A gate's plans (set -> (plans, seeds)): fresh plans of `tag`, 48 `dense` x 5 seeds and 24 per other generated
+    set x 2 seeds; `human`: `human_rooms` x 2 seeds."""
+    return {ds: (fresh_plans(ds, tag, 48), range(5)) if ds == "dense" else
+            (human_rooms() if ds == "human" else fresh_plans(ds, tag, 24), range(2)) for ds in SETS}
+
+
+def p50s(rows: list[dict], placers, variants) -> list[str]:
+    """The PTO p50 per object of each set and placer, the first variant -> the second."""
+    out = []
+    for label in dict.fromkeys(r["set"] for r in rows):
+        for placer in placers:
+            p50 = [statistics.median(r["pto_ms"] for r in rows if (r["set"], r["placer"], r["solver"]) ==
+                                     (label, placer, v)) for v in variants]
+            out.append(f"- {label} / {placer}: {p50[0]:.2f} -> {p50[1]:.2f} ({100 * (p50[1] / p50[0] - 1):+.1f} %)")
+    return out
+
+
+def variant_report(name: str, plans: str, rows: list[dict], variants, placers, metrics=METRICS) -> str:
+    """`name` minus the placer without it (`variants`: (without, with)) on `plans` (words), from `alternating`'s
+    rows."""
+    return "\n".join([f"{name} - without, {plans}, mean over the same (plan, seed) runs [95 % bootstrap interval over "
+                      "plans]; metrics x 100, energy as is, PTO in ms per object (the two alternating in one process); "
+                      "**bold** = better with the interval clear of 0, _italic_ = worse.", "",
+                      *header("set / placer", metrics), *variant_rows(rows, *variants, metrics, placers), "",
+                      "PTO p50 per object (ms), without -> with:", "", *p50s(rows, placers, variants)]) + "\n"
