@@ -77,6 +77,8 @@ def test_readme_section_shows_each_stored_set_with_its_plot_and_plots_remake_fro
 def test_variants_alternate_run_by_run_and_the_value_they_change_is_put_back():
     """`alternating` solves each (plan, seed) under both variants, in turns, with the variant's value in place while it
     solves; `variant_rows` counts the layouts a variant left unchanged (both here, the two variants polishing alike)."""
+    import itertools
+
     import models.placement.repair as repair
     from app.bench.paired import alternating, variant_rows
     from models.datasets import load_dataset
@@ -89,13 +91,14 @@ def test_variants_alternate_run_by_run_and_the_value_they_change_is_put_back():
             return shipped(ep, observer) if moves else []
         return polish
 
-    plans = [r.plan for r in load_dataset("dense") if r.plan.id == "dense-00392"]
+    plans = [r.plan for r in load_dataset("dense") if r.plan.id == "dense-00074"]
     metrics = (("constraint_satisfaction", 100, True, 2), ("pto_ms", 1, False, 2))
     rows = alternating({"dense": (plans, range(2))}, repair, "polish",
                        {"a": variant("a", True), "b": variant("b", True)}, metrics, placers=("greedy",))
     assert repair.polish is shipped
-    assert called == [r["solver"] for r in rows] == ["a", "b", "b", "a"]
-    assert all(r["set"] == "dense" and r["plan"] == "dense-00392" and r["pto_ms"] > 0 for r in rows)
+    assert [r["solver"] for r in rows] == ["a", "b", "b", "a"]
+    assert [name for name, _ in itertools.groupby(called)] == ["a", "b", "a"]  # a solve may polish more than once
+    assert all(r["set"] == "dense" and r["plan"] == "dense-00074" and r["pto_ms"] > 0 for r in rows)
     assert "(2 runs, 2 layouts unchanged)" in variant_rows(rows, "a", "b", metrics, placers=("greedy",))[0]
     off = alternating({"dense": (plans, range(1))}, repair, "polish", {"off": variant("off", False), "on": shipped},
                       metrics, placers=("greedy",))
