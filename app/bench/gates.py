@@ -1,18 +1,28 @@
 """What the A/B experiments on the step-wise placers share (`app/bench/results/plan2place/*/diagnose.py`, `gate.py`):
-the sets and metrics they judge, the plans of a fresh gate, and their report (a variant minus the placer without it,
-paired over the same runs, then the PTO p50s)."""
+the sets and metrics they judge, the diagnosis plans and the plans of a fresh gate, a diagnosis run, and their report
+(a variant minus the placer without it, paired over the same runs, then the PTO p50s)."""
 
 from __future__ import annotations
 
+import json
 import statistics
+from pathlib import Path
 
-from app.bench.paired import header, variant_rows
+from app.bench.paired import alternating, header, variant_rows
 from models.datasets import load_dataset
 from models.datasets.fresh import fresh_plans
 
 SETS = ("seen", "unseen_a", "unseen_b", "dense", "human")
 METRICS = (("cnt", 100, True, 2), ("key_nav", 100, True, 2), ("constraint_satisfaction", 100, True, 2),
            ("energy", 1, False, 3), ("realism", 100, True, 2), ("pto_ms", 1, False, 2))
+
+
+def diagnosis_plans(ds: str, n: int) -> list:
+    """`n` plans of set `ds` off the placement bench's sample (`i % step == step // 2`; the `seen` validation split),
+    on which the experiments look before writing their rules."""
+    recs = load_dataset(ds, "validation" if ds == "seen" else None)
+    step = max(len(recs) // 20, 1)
+    return [r.plan for i, r in enumerate(recs) if i % step == step // 2][:n]
 
 
 def human_rooms() -> list:
@@ -47,3 +57,15 @@ def variant_report(name: str, plans: str, rows: list[dict], variants, placers, m
                       "**bold** = better with the interval clear of 0, _italic_ = worse.", "",
                       *header("set / placer", metrics), *variant_rows(rows, *variants, metrics, placers), "",
                       "PTO p50 per object (ms), without -> with:", "", *p50s(rows, placers, variants)]) + "\n"
+
+
+def diagnose(folder: Path, name: str, where, attribute: str, variants: dict, placers, sets=SETS) -> str:
+    """A change (`where.attribute` taking each of `variants`' values; the first: without it) on 20 diagnosis plans per
+    set x 2 seeds, the placers alternating in one process: `diagnose.json` and `diagnose.md` written to `folder`; the
+    report."""
+    plan_sets = {ds: (diagnosis_plans(ds, 20), range(2)) for ds in sets}
+    rows = alternating(plan_sets, where, attribute, variants, METRICS, placers)
+    (folder / "diagnose.json").write_text(json.dumps(rows))
+    report = variant_report(name, "diagnosis plans", rows, tuple(variants), placers)
+    (folder / "diagnose.md").write_text(report)
+    return report

@@ -2,28 +2,15 @@
 plans (20 per set x 2 seeds; never the bench's or fresh plans), Plan2Place and greedy alternating in one process;
 writes `diagnose.md` and `diagnose.json` here:
 
-    PYTHONPATH=. python app/bench/results/plan2place/backtrack/diagnose.py
+    PYTHONPATH=. python app/bench/results/plan2place/backtrack/diagnose.py [SET ...]
 """
-import json
 import sys
 from pathlib import Path
 
-from app.bench.gates import METRICS, SETS, variant_report
-from app.bench.paired import alternating
+from app.bench.gates import SETS, diagnose
 from models.placement import backtrack
 
-HERE = Path(__file__).parent
-sys.path.insert(0, str(HERE.parent / "lookahead-bound"))
-from run import diagnosis_plans  # noqa: E402
-
-VARIANTS = ("without", "backtrack")
-PLACERS = ("plan2place", "greedy")
-
 if __name__ == "__main__":
-    plan_sets = {ds: (diagnosis_plans(ds, 20), range(2)) for ds in sys.argv[1:] or SETS}
-    rows = alternating(plan_sets, backtrack, "DEPTH", dict(zip(VARIANTS, (0, backtrack.DEPTH))), METRICS, PLACERS)
-    (HERE / "diagnose.json").write_text(json.dumps(rows))
-    report = variant_report(f"backtrack (DEPTH {backtrack.DEPTH}, TRIES {backtrack.TRIES})", "diagnosis plans", rows,
-                            VARIANTS, PLACERS)
-    (HERE / "diagnose.md").write_text(report)
-    print(report)
+    name = f"backtrack (DEPTH {backtrack.DEPTH}, TRIES {backtrack.TRIES})"
+    print(diagnose(Path(__file__).parent, name, backtrack, "DEPTH", {"without": 0, "backtrack": backtrack.DEPTH},
+                   ("plan2place", "greedy"), sys.argv[1:] or SETS))

@@ -17,9 +17,9 @@ from pathlib import Path
 
 import numpy as np
 
+from app.bench.gates import diagnosis_plans
 from app.bench.paired import cell, interval, paired
 from app.bench.placement import score
-from models.datasets import load_dataset
 from models.placement.base import get_solver
 from models.placement.greedy import Episode, GreedySolver
 from models.placement.plan2place.solver import Plan2PlaceSolver
@@ -60,10 +60,6 @@ class Oracle:
         return ep.layout(self.name, seed, time.perf_counter() - start)
 
 
-def diagnosis_plans(ds: str, n: int) -> list:
-    recs = load_dataset(ds, "validation" if ds == "seen" else None)
-    step = max(len(recs) // 20, 1)
-    return [r.plan for i, r in enumerate(recs) if i % step == step // 2][:n]
 
 
 def runs(plans_of, solvers, metrics=METRICS) -> list[dict]:
