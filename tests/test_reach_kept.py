@@ -65,6 +65,15 @@ def test_the_kept_steps_cut_no_task_object_off_even_for_a_placer_that_would():
     assert all(p.id not in kept.reach.task for p in free.placed if p.id in kept.failed)  # task objects are placed
 
 
+def test_a_fixed_object_is_never_left_out_for_reach():
+    plan = PLANS[ROOM]
+    free = _steps(plan, np.random.default_rng(0), cutting, None, None, ())
+    fixed = {p.id: (p.x, p.z, p.rotation) for p in free.placed}  # a designer's layout, task objects too
+    kept = _steps(plan, np.random.default_rng(0), cutting, fixed, None, (), step=kept_step)
+    assert free.reach.unreachable(free.placed)  # the fixed poses cut a task object off
+    assert {p.id: (p.x, p.z, p.rotation) for p in kept.placed} == fixed
+
+
 def test_fewer_out_of_reach_at_an_energy_that_is_not_lower_is_refused():
     plan = PLANS[ROOM]
     first, kept = solved(plan, 0), solved(plan, 1)

@@ -5,12 +5,12 @@ through a room that full.
 
 `solve_keeping`: when the repaired episode leaves a task object out of the robot's reach (placed and cut off, or
 not placed), the placer solves once more from the same random state with `kept_step`: an object whose chosen pose
-would cut a task object off is left out, with the reason `WALLS`; a task object itself is always placed. The new
-episode is repaired (the pass that places the left-out objects leaves those alone) and kept if it leaves fewer
-task objects out of reach at a lower energy: the judge's, which charges each object left out 8 / n and each task
-object out of reach through E_nav, so it decides case by case whether a chair or the fridge's reach weighs more.
-Its steps are shown after the first one's, each giving that reason before its own, the first marked as a
-`restart`. Going back a few steps to find such an object a pose that keeps the way open (as
+would cut a task object off is left out, with the reason `WALLS`; a task object or a fixed one (a designer's) is
+always placed. The new episode is repaired (the pass that places the left-out objects leaves those alone) and kept
+if it leaves fewer task objects out of reach at a lower energy: the judge's, which charges each object left out 8 / n
+and each task object out of reach through E_nav, so it decides case by case whether a chair or the fridge's reach
+weighs more. Its steps are shown after the first one's, each giving that reason before its own, the first marked
+as a `restart`. Going back a few steps to find such an object a pose that keeps the way open (as
 models.placement.backtrack does for an object with no legal pose) placed a little more on the diagnosis plans, at a
 higher energy and a quarter more time: not kept. Measured in `app/bench/results/plan2place/reach-kept/` (README,
 Plan2Place).
@@ -44,9 +44,9 @@ def out_of_reach(ep: Episode) -> int:
 
 def kept_step(ep: Episode, opts: Options, choose: Choose, rng: np.random.Generator,
               steps: collections.deque[bt.Taken]) -> tuple[Episode, collections.deque[bt.Taken], list[PlacementStep]]:
-    """`backtrack.step`, but an object other than a task object whose pose would cut one more task object off is
-    left out instead, with the reason `WALLS` (see the module)."""
-    if not len(opts.feasible) or opts.obj.id in ep.reach.task:
+    """`backtrack.step`, but an object other than a task object or a fixed one whose pose would cut one more task
+    object off is left out instead, with the reason `WALLS` (see the module)."""
+    if not len(opts.feasible) or opts.obj.id in ep.reach.task or opts.obj.id in ep.problem.fixed:
         return bt.step(ep, opts, choose, rng, steps)
     before, cut = ep.fork(), len(ep.reach.unreachable(ep.placed))
     record = bt.take(ep, opts, choose, rng, steps)
