@@ -153,7 +153,9 @@ class StudioSession:
             self.rooms = gui.add_text("Rooms (apartment)", "", hint="e.g. kitchen, living room, bedroom; empty: "
                                       "2-5 rooms drawn from the task")
             self.seed = gui.add_number("Seed", 0, min=0, step=1)
-            self.solver = gui.add_dropdown("Solver", tuple(sorted(SOLVERS)), initial_value=DEFAULT_SOLVER)
+            self.solver = gui.add_dropdown("Solver", tuple(sorted(SOLVERS)), initial_value=DEFAULT_SOLVER,
+                                           hint="plan2place may leave out an object that would cut a task object off "
+                                           "from the robot; plan2place_all_objects places every object it can")
             self.generate_button = gui.add_button("Generate", color="green")
             self.generate_button.on_click(lambda _: self.generate())
             self.graph_md = gui.add_markdown("")

@@ -111,7 +111,7 @@ def test_accept_needs_exactly_one_of_scene_and_apartment(db_url, extra):
         assert "exactly one of scene (a single room) and apartment" in r.text
 
 
-@pytest.mark.parametrize("solver", ["greedy", "lookahead"])
+@pytest.mark.parametrize("solver", ["greedy", "lookahead", "plan2place_all_objects"])
 def test_place_keeps_the_given_poses_and_names_a_stranger(db_url, solver):
     """POST /place: the plan's layout with the kept poses as they are; a kept id not in the plan is a 422."""
     api = client(db_url)

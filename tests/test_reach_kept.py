@@ -3,12 +3,15 @@ placer cut a task object off, the solve that keeps the way open is taken when th
 left-out objects say why and its steps are shown as a restart; it is refused when the energy is not lower; a task
 object left out counts as out of reach; where every task object is reached, nothing runs."""
 
+import json
+
 import numpy as np
 import pytest
 
+from app.cli import main
 from models.datasets import load_dataset
 from models.energy.exact import layout_energy
-from models.placement import reach_kept
+from models.placement import get_solver, reach_kept
 from models.placement.greedy import _steps
 from models.placement.plan2place.policy import place, shipped_policy, shipped_weights
 from models.placement.reach_kept import AGAIN, WALLS, better, kept_step, out_of_reach
@@ -107,3 +110,22 @@ def test_where_every_task_object_is_reached_nothing_is_solved_again(pid, monkeyp
     ep = solved(plan, 1, records.append)
     assert out_of_reach(ep) == 0 and not kept_steps  # the second solve is not even made
     assert not any(r.why.startswith(AGAIN) for r in records)
+
+
+def test_the_all_objects_solver_places_what_the_default_leaves_out_for_reach(tmp_path, capsys):
+    """`plan2place_all_objects` (CLI, API and studio by name) is Plan2Place without the second solve: every object it
+    can place is placed, at the cost of the task object's reach."""
+    plan = PLANS[ROOM]
+    every = get_solver("plan2place_all_objects").solve(plan, seed=0)
+    default = get_solver("plan2place").solve(plan, seed=0)
+    first = solved(plan, 0).layout("plan2place", 0, 0.0)
+    assert [(p.id, p.x, p.z, p.rotation) for p in every.placements] == \
+           [(p.id, p.x, p.z, p.rotation) for p in first.placements]
+    assert every.solver == "plan2place_all_objects"
+    assert len(every.placements) > len(default.placements)
+    assert WALLS in {u.reason for u in default.unplaced} and WALLS not in {u.reason for u in every.unplaced}
+    path = tmp_path / "plan.json"
+    path.write_text(plan.model_dump_json())
+    assert main(["place", str(path), "--solver", "plan2place_all_objects"]) == 0
+    placed = json.loads(capsys.readouterr().out)["placements"]
+    assert [q["id"] for q in placed] == [p.id for p in every.placements]

@@ -263,13 +263,13 @@ def tie_broken(opts: Options, rng: np.random.Generator) -> np.ndarray:
 
 
 def place_stepwise(plan: ConstraintPlan, rng: np.random.Generator, choose: Choose, fixed: Fixed | None = None,
-                   observer: StepObserver | None = None, repair: bool = True) -> Episode:
+                   observer: StepObserver | None = None, repair: bool = True, keep_reach: bool = True) -> Episode:
     """One episode of a step-wise placer (greedy, look-ahead, Plan2Place): at each step with a legal candidate,
     `choose(episode, options, rng)` gives (pick among the feasible candidates, probabilities for the heat-map, the
     step's reason); each step is observed; then, with `repair`, the repairs, the episode solved again with the
-    objects of broken constraints first, if that is better (models.placement.reorder), and solved again with every
-    task object kept reachable, if that is better (models.placement.reach_kept); each from the same random state.
-    All of it on one BLAS thread (models.placement.blas)."""
+    objects of broken constraints first, if that is better (models.placement.reorder), and, with `keep_reach`,
+    solved again with every task object kept reachable, if that is better (models.placement.reach_kept); each from
+    the same random state. All of it on one BLAS thread (models.placement.blas)."""
     with blas.one_blas_thread():
         start = copy.deepcopy(rng)
         ep = _steps(plan, rng, choose, fixed, observer, ())
@@ -280,8 +280,9 @@ def place_stepwise(plan: ConstraintPlan, rng: np.random.Generator, choose: Choos
             first_solve = ep
             ep = broken_first(ep, repair_layout, lambda first, seen: _steps(plan, copy.deepcopy(start), choose, fixed,
                                                                              seen, first, first_solve), observer)
-            ep = solve_keeping(ep, repair_layout, lambda seen: _steps(plan, copy.deepcopy(start), choose, fixed, seen,
-                                                                      (), first_solve, kept_step), observer)
+            if keep_reach:
+                ep = solve_keeping(ep, repair_layout, lambda seen: _steps(plan, copy.deepcopy(start), choose, fixed,
+                                                                          seen, (), first_solve, kept_step), observer)
     return ep
 
 

@@ -17,11 +17,13 @@ class Plan2PlaceSolver:
     name = "plan2place"
 
     def __init__(self, policy: Policy | None = None, name: str | None = None, use_global: bool = True,
-                 repair: bool = True, guard: bool = True):
+                 repair: bool = True, guard: bool = True, keep_reach: bool = True):
         """`policy`: another network's (e.g. `agent.fast_policy` of a checkpoint); the shipped one by default.
         `repair`: finish with the repairs (models.placement.repair); `guard`: the reach guard
-        (`Episode.guarded`)."""
+        (`Episode.guarded`); `keep_reach`: with the repairs, solve again leaving out what cuts a task object off
+        from the robot, if the energy finds that better (models.placement.reach_kept)."""
         self._policy, self._use_global, self.repair, self.guard = policy, use_global, repair, guard
+        self.keep_reach = keep_reach
         if name:
             self.name = name
 
@@ -31,7 +33,8 @@ class Plan2PlaceSolver:
         policy, use_global = self._policy, self._use_global
         if policy is None:
             policy, use_global = shipped_policy(), shipped_weights().use_global
-        ep = place(policy, plan, np.random.default_rng(seed), use_global, fixed, observer, self.repair, self.guard)
+        ep = place(policy, plan, np.random.default_rng(seed), use_global, fixed, observer, self.repair, self.guard,
+                   self.keep_reach)
         return ep.layout(self.name, seed, time.perf_counter() - start)
 
 
