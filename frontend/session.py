@@ -35,8 +35,9 @@ from models.exports.glb import ROLE_COLOURS
 from models.exports.stored import glb_of, house_of
 from models.language import InstructionError
 from models.metrics import SceneMetrics
-from models.placement import DEFAULT_SOLVER, SOLVERS, PlacementStep
-from models.values import Scene, TaskGraph, TaskObject
+from models.placement import ALL_OBJECTS, DEFAULT_SOLVER, SOLVERS, PlacementStep
+from models.placement.reach_kept import WALLS
+from models.values import Scene, TaskGraph, TaskObject, Unplaced
 from models.values.apartment import APARTMENT, Apartment
 from models.world import ROOM_TYPES, catalogue
 from studio_db import Store
@@ -154,8 +155,8 @@ class StudioSession:
                                       "2-5 rooms drawn from the task")
             self.seed = gui.add_number("Seed", 0, min=0, step=1)
             self.solver = gui.add_dropdown("Solver", tuple(sorted(SOLVERS)), initial_value=DEFAULT_SOLVER,
-                                           hint="plan2place may leave out an object that would cut a task object off "
-                                           "from the robot; plan2place_all_objects places every object it can")
+                                           hint=f"{DEFAULT_SOLVER} may leave out an object that would cut a task object "
+                                           f"off from the robot; {ALL_OBJECTS} places every object it can")
             self.generate_button = gui.add_button("Generate", color="green")
             self.generate_button.on_click(lambda _: self.generate())
             self.graph_md = gui.add_markdown("")
@@ -330,7 +331,7 @@ class StudioSession:
         placed = len(gen.layout.placements)
         self.say(f"Scene ready (#{self.state.runs}): {placed} placed, {len(gen.layout.unplaced)} unplaced "
                  f"({1000 * (time.perf_counter() - started):.0f} ms). Room: **{gen.task_graph.room_type}**."
-                 + (f"\n\n{note}" if note else ""))
+                 + "".join(f"\n\n{n}" for n in (unplaced_note(gen.layout.unplaced), note) if n))
         self.checks_md.content = "**Checks:** running…"
         threading.Thread(target=self._after_scene, args=(gen, steps), daemon=True).start()
         return True
@@ -965,6 +966,17 @@ def placing_progress(steps: list[PlacementStep]) -> str:
     or repaired one placed before in the same solve (frontend.replay.repeated)."""
     doing = "repairing" if repeated(steps, len(steps)) else "placing"
     return f"⏳ Placing objects: step {len(steps)}, {doing} (last `{steps[-1].object_id}`)…"
+
+
+def unplaced_note(unplaced: list[Unplaced]) -> str:
+    """What the placer left out and why; for an object left out to keep a task object reachable, the solver that
+    places it anyway."""
+    if not unplaced:
+        return ""
+    lines = [f"- `{u.id}`: {u.reason}" for u in unplaced]
+    if any(u.reason == WALLS for u in unplaced):
+        lines.append(f"The solver `{ALL_OBJECTS}` places every object it can, even one that cuts a task object off.")
+    return "Left out:\n" + "\n".join(lines)
 
 
 def step_caption(steps: list[PlacementStep], shown: int, obj, room: str = "", room_of: RoomOf = one_room) -> str:

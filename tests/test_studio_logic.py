@@ -223,3 +223,19 @@ def test_in_an_apartment_a_solve_from_the_start_takes_up_only_its_own_rooms_obje
     assert visible == {"r1-table-0", "r2-sofa-0"}  # room 1 stays; room 2 starts again from its sofa
     assert [repeated(steps, k, room_of) for k in range(1, 6)] == [False, False, False, False, False]
     assert repeated([*steps, _step("r2-sofa-0", (7.0, 2.5, 0.0))], 6, room_of)  # a repair in the new solve
+
+
+def test_the_ready_line_says_what_was_left_out_and_which_solver_places_it():
+    from frontend.session import unplaced_note
+    from models.datasets import load_dataset
+    from models.placement import ALL_OBJECTS, get_solver
+    from models.placement.reach_kept import WALLS
+
+    plan = next(r.plan for r in load_dataset("dense") if r.plan.id == "dense-00658")  # the reach-kept solve's room
+    default = get_solver().solve(plan).unplaced
+    note = unplaced_note(default)
+    assert any(u.reason == WALLS for u in default)
+    assert all(f"`{u.id}`: {u.reason}" in note for u in default) and f"`{ALL_OBJECTS}`" in note
+    assert unplaced_note([]) == ""
+    no_room = [u for u in get_solver("dfs").solve(plan).unplaced if u.reason != WALLS]
+    assert ALL_OBJECTS not in unplaced_note(no_room)

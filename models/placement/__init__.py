@@ -1,7 +1,8 @@
 """ConstraintPlan -> Layout: the placers, all behind one Solver interface."""
 
-from models.placement.base import (DEFAULT_SOLVER, SOLVERS, PlacementStep, Solver, StepObserver, UnknownSolver,
-                                   get_solver)
+from models.placement.base import (ALL_OBJECTS, DEFAULT_SOLVER, SOLVERS, PlacementStep, Solver, StepObserver,
+                                   UnknownSolver, get_solver)
 from models.placement.problem import PlacementProblem
 
-__all__ = ["DEFAULT_SOLVER", "PlacementProblem", "PlacementStep", "SOLVERS", "Solver", "StepObserver", "UnknownSolver", "get_solver"]
+__all__ = ["ALL_OBJECTS", "DEFAULT_SOLVER", "PlacementProblem", "PlacementStep", "SOLVERS", "Solver", "StepObserver",
+           "UnknownSolver", "get_solver"]

@@ -81,12 +81,15 @@ def _plan2place() -> Solver:
     return Plan2PlaceSolver()
 
 
+ALL_OBJECTS = "plan2place_all_objects"  # the default without the reach-kept solve
+
+
 def _plan2place_all_objects() -> Solver:
     """Plan2Place without the reach-kept solve: in a crowded room it places every object it legally can, even one
     that cuts a task object off from the robot (the default leaves such an object out when the energy finds that
     better)."""
     from models.placement.plan2place.solver import Plan2PlaceSolver
-    return Plan2PlaceSolver(keep_reach=False, name="plan2place_all_objects")
+    return Plan2PlaceSolver(keep_reach=False, name=ALL_OBJECTS)
 
 
 def _plan2place_untrained() -> Solver:
@@ -95,7 +98,7 @@ def _plan2place_untrained() -> Solver:
 
 
 SOLVERS: dict[str, Callable[[], Solver]] = {"greedy": _greedy, "lookahead": _lookahead, "plan2place": _plan2place,
-                                            "plan2place_all_objects": _plan2place_all_objects,
+                                            ALL_OBJECTS: _plan2place_all_objects,
                                             "plan2place_untrained": _plan2place_untrained, "dfs": _dfs, "milp": _milp,
                                             "milp_whole": _milp_whole, "z3": _z3}
 DEFAULT_SOLVER = "plan2place"
