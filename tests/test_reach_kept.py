@@ -1,7 +1,8 @@
 """Solving again with every task object kept reachable (models.placement.reach_kept): in a crowded room where the
 placer cut a task object off, the solve that keeps the way open is taken when the judge's energy is lower, its
 left-out objects say why and its steps are shown as a restart; it is refused when the energy is not lower; a task
-object left out counts as out of reach; where every task object is reached, nothing runs."""
+object left out counts as out of reach; where every task object is reached, nothing runs; the solver without it
+places what it leaves out."""
 
 import json
 
