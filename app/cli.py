@@ -16,6 +16,7 @@ from pydantic import ValidationError
 from models.language import InstructionError
 from models.language.combined import DEFAULT_POLICY, POLICIES, make_parser
 from models.placement import DEFAULT_SOLVER, SOLVERS, UnknownSolver
+from models.placement.base import summaries
 from models.planning.apartment_planner import ApartmentError, is_apartment, parse_rooms
 from models.planning.floorplan import FloorplanError
 from models.world import ROOM_TYPES, UnknownRoomType
@@ -36,7 +37,8 @@ class Parser(argparse.ArgumentParser):
     def error(self, message: str):  # one line instead of argparse's usage block
         raise BadInput(message)
 
-SOLVER_HELP = f"placer: {DEFAULT_SOLVER} (default); one of {', '.join(sorted(SOLVERS))}"
+SOLVER_HELP = f"placer: {DEFAULT_SOLVER} (default); one of {', '.join(sorted(SOLVERS))} (listed below)"
+SOLVER_LIST = "solvers:\n" + "\n".join(f"  {name:24s}{line}" for name, line in summaries().items())
 
 
 def _value_error(path: str, err: ValidationError, what: str) -> BadInput:
@@ -374,7 +376,8 @@ def build_parser() -> argparse.ArgumentParser:
     _parser_options(p)
     p.set_defaults(run=cmd_parse)
 
-    p = sub.add_parser("place", help="place the objects of constraint plan(s) -> layout JSON")
+    p = sub.add_parser("place", help="place the objects of constraint plan(s) -> layout JSON", epilog=SOLVER_LIST,
+                       formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("plans", nargs="+", metavar="PLAN.json")
     p.add_argument("--solver", default=None, help=SOLVER_HELP)
     p.add_argument("--seed", type=int, default=0)
@@ -387,7 +390,8 @@ def build_parser() -> argparse.ArgumentParser:
                    "around them")
     p.set_defaults(run=cmd_place)
 
-    p = sub.add_parser("generate", help="the whole pipeline -> task_graph, plan, layout, house JSON and GLB")
+    p = sub.add_parser("generate", help="the whole pipeline -> task_graph, plan, layout, house JSON and GLB",
+                       epilog=SOLVER_LIST, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("instruction")
     p.add_argument("--room-type", required=True, help=room_help + "; or apartment (several rooms joined by doors)")
     p.add_argument("--rooms", default=None, help='with --room-type apartment: the rooms, e.g. "kitchen, living room, '

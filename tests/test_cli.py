@@ -124,6 +124,17 @@ def test_unknown_solver(tmp_path, capsys):
     assert code == 2 and "unknown solver 'annealing'" in err
 
 
+@pytest.mark.parametrize("command", ["place", "generate"])
+def test_help_says_what_each_solver_does(command):
+    from models.placement import SOLVERS
+    from models.placement.base import summaries
+    proc = subprocess.run(H3DS + [command, "--help"], capture_output=True, text=True, timeout=60)
+    listed = proc.stdout.split("solvers:\n", 1)[1].splitlines()
+    assert proc.returncode == 0 and [line.split()[0] for line in listed] == sorted(SOLVERS)
+    assert all(len(line.split(None, 1)[1]) > 20 for line in listed)  # a sentence each, not an empty docstring
+    assert summaries()["plan2place_all_objects"] in proc.stdout
+
+
 def test_binary_instruction_through_the_real_process():
     proc = subprocess.run(H3DS + ["parse", "\x7f\x01\x02"], capture_output=True, text=True, timeout=60)
     assert proc.returncode == 2 and "Traceback" not in proc.stderr and proc.stderr.count("\n") == 1

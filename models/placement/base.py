@@ -46,37 +46,43 @@ class UnknownSolver(ValueError):
 
 
 def _dfs() -> Solver:
+    """A depth-first search over grid poses in the manner of Holodeck's (baseline)."""
     from models.placement.dfs import DFSSolver
     return DFSSolver()
 
 
 def _milp() -> Solver:
+    """Holodeck's MILP formulation solved with HiGHS, object by object (baseline)."""
     from models.placement.milp import MILPSolver
     return MILPSolver()
 
 
 def _milp_whole() -> Solver:
-    """The monolithic MILP (one model for all objects), kept to measure against the object-by-object one."""
+    """The monolithic MILP, one model for all objects (kept to measure the object-by-object one against)."""
     from models.placement.milp import MILPSolver
     return MILPSolver(mode="whole")
 
 
 def _z3() -> Solver:
+    """The same model stated as logic for Z3's optimiser, all objects at once (baseline; slow)."""
     from models.placement.smt import Z3Solver
     return Z3Solver()
 
 
 def _greedy() -> Solver:
+    """Per object, the candidate of lowest immediate energy, then the repairs (the learning's yardstick)."""
     from models.placement.greedy import GreedySolver
     return GreedySolver()
 
 
 def _lookahead() -> Solver:
+    """Greedy's best candidates judged by finishing the episode greedily, then the repairs (4-7 x slower)."""
     from models.placement.lookahead import LookaheadSolver
     return LookaheadSolver()
 
 
 def _plan2place() -> Solver:
+    """The trained actor-critic placer, then the repairs; may leave out what cuts a task object off (default)."""
     from models.placement.plan2place.solver import Plan2PlaceSolver
     return Plan2PlaceSolver()
 
@@ -85,14 +91,16 @@ ALL_OBJECTS = "plan2place_all_objects"  # the default without the reach-kept sol
 
 
 def _plan2place_all_objects() -> Solver:
-    """Plan2Place without the reach-kept solve: in a crowded room it places every object it legally can, even one
-    that cuts a task object off from the robot (the default leaves such an object out when the energy finds that
-    better)."""
+    """Plan2Place placing every object it legally can, even one that cuts a task object off from the robot.
+
+    It is the default without the reach-kept solve (models.placement.reach_kept), which leaves such an object out
+    in a crowded room when the energy finds that better."""
     from models.placement.plan2place.solver import Plan2PlaceSolver
     return Plan2PlaceSolver(keep_reach=False, name=ALL_OBJECTS)
 
 
 def _plan2place_untrained() -> Solver:
+    """The Plan2Place network at its initial weights (what training adds is measured against it)."""
     from models.placement.plan2place.solver import untrained_solver
     return untrained_solver()
 
@@ -102,6 +110,11 @@ SOLVERS: dict[str, Callable[[], Solver]] = {"greedy": _greedy, "lookahead": _loo
                                             "plan2place_untrained": _plan2place_untrained, "dfs": _dfs, "milp": _milp,
                                             "milp_whole": _milp_whole, "z3": _z3}
 DEFAULT_SOLVER = "plan2place"
+
+
+def summaries() -> dict[str, str]:
+    """Each solver's name and one line on what it does (its factory's docstring's first line)."""
+    return {name: next(iter((make.__doc__ or "").strip().splitlines()), "") for name, make in sorted(SOLVERS.items())}
 
 
 def get_solver(name: str | None = None) -> Solver:
