@@ -3,7 +3,7 @@
 from importlib import resources
 
 from models.energy.prior import judge_scene
-from models.metrics.realism import build, realism, realism_checks, stats
+from models.metrics.realism import Check, build, checks, realism, realism_checks, stats
 from models.values import ConstraintPlan, Layout, Placement, Size, Timing
 
 ROOM = {"type": "bedroom", "width": 4.0, "depth": 4.0, "doors": [{"wall": "south", "center": 2.0, "width": 1.0}]}
@@ -44,3 +44,11 @@ def test_in_a_corner_facing_away_from_either_wall_counts_as_against_the_wall():
     corner = {180: (0.7, 3.0), 90: (1.0, 3.3), 0: (0.7, 3.0), 270: (1.0, 3.3)}  # west and north walls touched
     passed = {r: realism_checks(*scored({"bed": (x, z, r)}))[0] for r, (x, z) in corner.items()}
     assert passed == {180: 1, 90: 1, 0: 0, 270: 0}
+
+
+def test_each_check_names_its_object_kind_and_companion():
+    plan, layout = scored({"bed": (2.0, 3.0, 180), "side": (3.6, 0.4, 0)})  # the side table far from the bed
+    found = checks(plan, layout)
+    assert (sum(c.passed for c in found), len(found)) == realism_checks(plan, layout)
+    assert Check("bed", "wall", True) in found
+    assert Check("side", "companion", False, "Bed") in found

@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import json
 from collections import defaultdict
+from dataclasses import dataclass
 from functools import cache
 from importlib import resources
 from pathlib import Path
@@ -92,19 +93,29 @@ def _lookup(table: dict, room: str, *types: str):
     return None
 
 
-def realism_checks(plan: ConstraintPlan, layout: Layout) -> tuple[int, int]:
-    """(checks passed, checks) of one layout."""
+@dataclass(frozen=True)
+class Check:
+    """One check of the judge: `object_id`'s wall habit ("wall" or "free") or its companion `other` type."""
+
+    object_id: str
+    kind: str  # "wall", "free" or "companion"
+    passed: bool
+    other: str = ""  # the companion type
+
+
+def checks(plan: ConstraintPlan, layout: Layout) -> list[Check]:
+    """Every check of one layout, in the plan's object order."""
     st = stats()
     room = plan.room
     placed = {p.id: p for p in layout.placements}
     box = {k: tuple(float(v) for v in np.reshape(boxes(p.x, p.z, p.size.x, p.size.z, p.rotation), 4))
            for k, p in placed.items()}
-    passed = total = 0
+    out = []
     for o in plan.objects:
         share = _lookup(st["wall"], room.type, o.type)
         p = placed.get(o.id)
         if share is not None:
-            total += 1
+            passed = False
             if p is not None:
                 b = box[o.id]
                 dists = {"west": b[0], "south": b[1], "east": room.width - b[2], "north": room.depth - b[3]}
@@ -112,18 +123,25 @@ def realism_checks(plan: ConstraintPlan, layout: Layout) -> tuple[int, int]:
                 if share >= HABIT:
                     fx, fz = front(p.rotation)
                     inward = {"west": fx, "south": fz, "east": -fx, "north": -fz}
-                    passed += any(inward[wall] > 0.5 for wall in touched)
+                    passed = any(inward[wall] > 0.5 for wall in touched)
                 else:
-                    passed += not touched
+                    passed = not touched
+            out.append(Check(o.id, "wall" if share >= HABIT else "free", passed))
         for target_type in sorted({t.type for t in plan.objects if t.type != o.type}):
             allowed = _lookup(st["companions"], room.type, o.type, target_type)
             if allowed is None:
                 continue
-            total += 1
             targets = [box[t.id] for t in plan.objects if t.type == target_type and t.id in placed]
-            if p is not None and targets:
-                passed += float(gap_of_boxes(np.array(box[o.id]), np.array(targets)).min()) <= allowed + 1e-9
-    return passed, total
+            passed = p is not None and bool(targets) and \
+                float(gap_of_boxes(np.array(box[o.id]), np.array(targets)).min()) <= allowed + 1e-9
+            out.append(Check(o.id, "companion", passed, target_type))
+    return out
+
+
+def realism_checks(plan: ConstraintPlan, layout: Layout) -> tuple[int, int]:
+    """(checks passed, checks) of one layout."""
+    found = checks(plan, layout)
+    return sum(c.passed for c in found), len(found)
 
 
 def realism(plan: ConstraintPlan, layout: Layout) -> float | None:
