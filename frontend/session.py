@@ -35,6 +35,7 @@ from models.exports.glb import ROLE_COLOURS
 from models.exports.stored import glb_of, house_of
 from models.language import InstructionError
 from models.metrics import SceneMetrics
+from models.metrics.realism import Check, checks as habit_checks
 from models.placement import ALL_OBJECTS, DEFAULT_SOLVER, SOLVERS, PlacementStep
 from models.placement.reach_kept import WALLS
 from models.values import Scene, TaskGraph, TaskObject, Unplaced
@@ -548,12 +549,14 @@ class StudioSession:
             self.state.findings = findings
         self.checks_md.content = summary(findings)
         e = layout_energy(gen.plan, gen.layout.placements).as_dict()
+        habits = habit_checks(gen.plan, gen.layout)
         self.metrics_md.content = (
             "| metric | value |\n| --- | --- |\n"
             f"| CNT | {100 * m.cnt:.0f} % |\n| SR | {_pct(m.sr)} |\n| NAV | {100 * m.nav:.1f} % |\n"
             f"| Key_NAV | {_pct(m.key_nav)} |\n| OOB | {100 * m.oob:.0f} % |\n| collisions | {m.collisions} |\n"
             f"| constraints met | {100 * m.constraint_satisfaction:.0f} % |\n"
-            f"| energy (total) | {e['total']:.3f} |")
+            f"| realism (iTHOR habits) | {_pct(sum(c.passed for c in habits) / len(habits) if habits else None)} |\n"
+            f"| energy (total) | {e['total']:.3f} |" + habits_note(habits))
         return findings
 
     # ---- picking and moving -----------------------------------------------------------------------
@@ -977,6 +980,18 @@ def unplaced_note(unplaced: list[Unplaced]) -> str:
     if any(u.reason == WALLS for u in unplaced):
         lines.append(f"The solver `{ALL_OBJECTS}` places every object it can, even one that cuts a task object off.")
     return "Left out:\n" + "\n".join(lines)
+
+
+def habits_note(found: list[Check]) -> str:
+    """The realism judge's checks the layout fails, each as the habit of the iTHOR rooms it misses (a stand-in for a
+    human or VLM judge: models.metrics.realism)."""
+    missed = [c for c in found if not c.passed]
+    if not missed:
+        return ""
+    habit = {"wall": "stands against a wall, facing into the room", "free": "stands free of the walls",
+             "companion": "stands by a {}"}
+    lines = [f"- `{c.object_id}` {habit[c.kind].format(c.other)}" for c in missed]
+    return "\n\nHabits of the iTHOR rooms not kept here:\n" + "\n".join(lines)
 
 
 def step_caption(steps: list[PlacementStep], shown: int, obj, room: str = "", room_of: RoomOf = one_room) -> str:

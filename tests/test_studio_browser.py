@@ -102,6 +102,8 @@ def test_two_designers_do_not_see_each_other(browser, studio):
     assert "Book" not in a.get_by_text("Key objects:").locator("xpath=..").inner_text()
     assert "kitchen" in a.get_by_text(re.compile("Scene ready")).inner_text()
     assert "bedroom" in b.get_by_text(re.compile("Scene ready")).inner_text()
+    b.get_by_role("tab", name="Constraints").click()  # the metrics, realism with them
+    b.get_by_text("realism (iTHOR habits)").wait_for(timeout=WAIT)
 
 
 def test_the_step_animation_replays_what_the_placer_did(browser, studio):

@@ -239,3 +239,13 @@ def test_the_ready_line_says_what_was_left_out_and_which_solver_places_it():
     assert unplaced_note([]) == ""
     no_room = [u for u in get_solver("dfs").solve(plan).unplaced if u.reason != WALLS]
     assert ALL_OBJECTS not in unplaced_note(no_room)
+
+
+def test_the_metrics_panel_names_each_habit_the_layout_misses():
+    from frontend.session import habits_note
+    from models.metrics.realism import Check
+
+    note = habits_note([Check("bed", "wall", True), Check("side", "companion", False, "Bed"),
+                        Check("chair", "free", False)])
+    assert "`side` stands by a Bed" in note and "`chair` stands free of the walls" in note and "`bed`" not in note
+    assert habits_note([Check("bed", "wall", True)]) == "" and habits_note([]) == ""
