@@ -35,7 +35,7 @@ from models.exports.glb import ROLE_COLOURS
 from models.exports.stored import glb_of, house_of
 from models.language import InstructionError
 from models.metrics import SceneMetrics
-from models.metrics.realism import Check, checks as habit_checks
+from models.metrics.realism import Check, checks as habit_checks, passed_share
 from models.placement import ALL_OBJECTS, DEFAULT_SOLVER, SOLVERS, PlacementStep
 from models.placement.reach_kept import WALLS
 from models.values import Scene, TaskGraph, TaskObject, Unplaced
@@ -555,7 +555,7 @@ class StudioSession:
             f"| CNT | {100 * m.cnt:.0f} % |\n| SR | {_pct(m.sr)} |\n| NAV | {100 * m.nav:.1f} % |\n"
             f"| Key_NAV | {_pct(m.key_nav)} |\n| OOB | {100 * m.oob:.0f} % |\n| collisions | {m.collisions} |\n"
             f"| constraints met | {100 * m.constraint_satisfaction:.0f} % |\n"
-            f"| realism (iTHOR habits) | {_pct(sum(c.passed for c in habits) / len(habits) if habits else None)} |\n"
+            f"| realism (iTHOR habits) | {_pct(passed_share(habits))} |\n"
             f"| energy (total) | {e['total']:.3f} |" + habits_note(habits))
         return findings
 

@@ -144,9 +144,13 @@ def realism_checks(plan: ConstraintPlan, layout: Layout) -> tuple[int, int]:
     return sum(c.passed for c in found), len(found)
 
 
+def passed_share(found: list[Check]) -> float | None:
+    """Realism of a layout's `checks`: the share passed, None without checks."""
+    return sum(c.passed for c in found) / len(found) if found else None
+
+
 def realism(plan: ConstraintPlan, layout: Layout) -> float | None:
-    passed, total = realism_checks(plan, layout)
-    return passed / total if total else None
+    return passed_share(checks(plan, layout))
 
 
 if __name__ == "__main__":
