@@ -22,14 +22,10 @@ PLANS = {r.plan.id: r.plan for r in load_dataset("dense")}
 ROOM = "dense-00658"  # 11 objects; Plan2Place places all of them and cuts its one task object off
 
 
-def solved(plan, rounds: int, observer=None, seed: int = 0):
-    """Plan2Place's episode with the repairs, solving again with reach kept at most `rounds` times."""
-    shipped = reach_kept.ROUNDS
-    reach_kept.ROUNDS = rounds
-    try:
-        return place(shipped_policy(), plan, np.random.default_rng(seed), shipped_weights().use_global, None, observer)
-    finally:
-        reach_kept.ROUNDS = shipped
+def solved(plan, keep_reach: bool, observer=None, seed: int = 0):
+    """Plan2Place's episode with the repairs, with or without solving again with reach kept."""
+    return place(shipped_policy(), plan, np.random.default_rng(seed), shipped_weights().use_global, None, observer,
+                 keep_reach=keep_reach)
 
 
 def energy(plan, ep) -> float:
@@ -38,7 +34,7 @@ def energy(plan, ep) -> float:
 
 def test_a_task_object_cut_off_is_reached_by_the_solve_that_keeps_the_way_open_at_a_lower_energy():
     plan, records = PLANS[ROOM], []
-    first, kept = solved(plan, 0), solved(plan, 1, records.append)
+    first, kept = solved(plan, False), solved(plan, True, records.append)
     assert out_of_reach(first) > 0 and out_of_reach(kept) < out_of_reach(first)
     assert energy(plan, kept) < energy(plan, first)
     # what it left out says why; its steps follow the first solve's, from an empty room
@@ -80,7 +76,7 @@ def test_a_fixed_object_is_never_left_out_for_reach():
 
 def test_fewer_out_of_reach_at_an_energy_that_is_not_lower_is_refused():
     plan = PLANS[ROOM]
-    first, kept = solved(plan, 0), solved(plan, 1)
+    first, kept = solved(plan, False), solved(plan, True)
     assert better(kept, first)
     assert not better(kept, kept)  # not fewer out of reach
     costly = kept.fork()
@@ -94,7 +90,7 @@ def test_fewer_out_of_reach_at_an_energy_that_is_not_lower_is_refused():
 
 
 def test_a_task_object_left_out_counts_as_out_of_reach():
-    ep = solved(PLANS[ROOM], 1)
+    ep = solved(PLANS[ROOM], True)
     task = next(p.id for p in ep.placed if p.id in ep.reach.task)
     left_out = ep.fork()
     left_out.placed = [p for p in ep.placed if p.id != task]
@@ -108,7 +104,7 @@ def test_where_every_task_object_is_reached_nothing_is_solved_again(pid, monkeyp
     kept_steps = []
     monkeypatch.setattr(reach_kept, "kept_step", lambda *a: kept_steps.append(a) or kept_step(*a))
     records = []
-    ep = solved(plan, 1, records.append)
+    ep = solved(plan, True, records.append)
     assert out_of_reach(ep) == 0 and not kept_steps  # the second solve is not even made
     assert not any(r.why.startswith(AGAIN) for r in records)
 
@@ -119,7 +115,7 @@ def test_the_all_objects_solver_places_what_the_default_leaves_out_for_reach(tmp
     plan = PLANS[ROOM]
     every = get_solver("plan2place_all_objects").solve(plan, seed=0)
     default = get_solver("plan2place").solve(plan, seed=0)
-    first = solved(plan, 0).layout("plan2place", 0, 0.0)
+    first = solved(plan, False).layout("plan2place", 0, 0.0)
     assert [(p.id, p.x, p.z, p.rotation) for p in every.placements] == \
            [(p.id, p.x, p.z, p.rotation) for p in first.placements]
     assert every.solver == "plan2place_all_objects"

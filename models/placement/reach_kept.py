@@ -30,7 +30,6 @@ from models.placement.greedy import Choose, Episode, Options
 from models.placement.polish import Standing
 from models.placement.reorder import Repair
 
-ROUNDS = 1  # solves again at most this often (0: never)
 WALLS = "left out: each of its poses would cut a task object off from the robot"  # a left-out object's reason
 AGAIN = "solved again keeping every task object reachable"  # the reason shown on a kept episode's steps
 
@@ -66,7 +65,7 @@ def better(new: Episode, old: Episode) -> bool:
 def solve_keeping(ep: Episode, repair: Repair, again: Steps, observer: StepObserver | None = None) -> Episode:
     """`ep` (repaired), or the episode solved again by `again` with every task object kept reachable and repaired, if
     it is `better` (see the module)."""
-    if not ROUNDS or not out_of_reach(ep):
+    if not out_of_reach(ep):
         return ep
     steps: list[PlacementStep] = []
     new = again(steps.append)

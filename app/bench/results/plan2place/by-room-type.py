@@ -16,13 +16,11 @@ import numpy as np
 from app.bench.paired import cell, header, interval, paired
 from models.datasets import load_dataset
 from models.energy.prior import ithor_scenes
+from targets import RESULTS, SETS, best_other
 
 HERE = Path(__file__).resolve().parent
-RESULTS = HERE.parent
-SETS = ("seen", "unseen_a", "unseen_b", "dense", "human")
 METRICS = (("key_nav", 100, True, 1), ("constraint_satisfaction", 100, True, 1), ("realism", 100, True, 1),
            ("energy", 1, False, 3))
-NOT_COMPARED = {"plan2place", "human", "lookahead"}  # as targets.py: the people's layouts, this project's option
 
 
 def pooled_runs() -> dict[str, list[dict]]:
@@ -33,13 +31,6 @@ def pooled_runs() -> dict[str, list[dict]]:
         for r in json.loads((RESULTS / f"placement-{ds}" / "results.json").read_text()):
             by_type.setdefault(room[r["plan"]], []).append({**r, "plan": f"{ds}/{r['plan']}"})
     return by_type
-
-
-def best_other(rows: list[dict], metric: str, up: bool) -> str:
-    """The compared solver with the best mean of `metric` over `rows`."""
-    means = {s: float(np.mean([r[metric] for r in rows if r["solver"] == s and r.get(metric) is not None]))
-             for s in sorted({r["solver"] for r in rows} - NOT_COMPARED)}
-    return (max if up else min)(means, key=means.get)
 
 
 def main() -> str:
