@@ -15,6 +15,8 @@ from dataclasses import replace
 
 import numpy as np
 
+from frontend.captions import parser_note
+from frontend.state import Values
 from models.language import InstructionError
 from models.placement import PlacementStep
 from models.planning.apartment_planner import ApartmentError, parse_rooms
@@ -42,27 +44,25 @@ class ApartmentMode:
 
     def generate(self) -> None:
         """Generate an apartment from the Task tab (rooms from the Rooms field, or drawn from the task)."""
-        from frontend.session import _parser_note
         s = self.session
         started = time.perf_counter()
         steps: list[PlacementStep] = []
         try:
             rooms = parse_rooms(s.rooms.value) if s.rooms.value.strip() else None
             apartment = s.pipeline.generate_apartment(s.instruction.value, rooms, int(s.seed.value), s.solver.value,
-                                                      s._observer(steps))
+                                                      s.observer(steps))
         except (InstructionError, ApartmentError, FloorplanError) as e:
             s.say(f"**Error:** {e}")
             return
         self.show(apartment, steps, scene_id=None)
-        s._set_unsaved(True)
+        s.set_unsaved(True)
         placed = sum(len(layout.placements) for layout in apartment.layouts)
         s.say(f"Apartment ready (#{s.state.runs}): {len(apartment.scenes)} rooms, {placed} placed, "
               f"{len(apartment.unplaced)} unplaced ({1000 * (time.perf_counter() - started):.0f} ms)."
-              + (f"\n\n{_parser_note(apartment.task_graph)}" if apartment.task_graph.uncertain else ""))
+              + (f"\n\n{parser_note(apartment.task_graph)}" if apartment.task_graph.uncertain else ""))
 
     def show(self, apartment: Apartment, steps: list[PlacementStep], scene_id: int | None) -> None:
         """Put an apartment on screen (its steps in the Placement tab); `scene_id`: the stored scene it is."""
-        from frontend.session import Values
         s = self.session
         with s.lock:
             self.current, self.scene = apartment, house_scene(apartment)
@@ -77,14 +77,14 @@ class ApartmentMode:
         s.set_view("fit" if s.state.view != "top" else "top")
         s.checks_md.content = ""
         s.graph_md.content = self.summary()
-        s._draw_graph(apartment.task_graph)
+        s.draw_graph(apartment.task_graph)
 
     def save(self) -> None:
         """Accept & save: a new stored scene, or the next version of the stored apartment on screen. There
         are no checks to run (they are single-room) and no edits (apartments are not edited)."""
         s, a = self.session, self.current
-        name = s.save_name.value.strip() or a.task_graph.instruction[:60]
-        sid, number = s.store_version(name, a, [])
+        name = s.scenes.save_name.value.strip() or a.task_graph.instruction[:60]
+        sid, number = s.scenes.store_version(name, a, [])
         s.say(f"Saved as scene {sid}, version {number} (“{name}”): an apartment of {len(a.scenes)} rooms.")
 
     def open(self, apartment: Apartment, scene_id: int, number: int, stored: dict) -> None:
@@ -94,9 +94,9 @@ class ApartmentMode:
         steps: list[PlacementStep] = []
         with contextlib.suppress(Exception):  # a solver that no longer exists: the apartment opens without replay
             for plan in apartment.plans:
-                s.pipeline.place(plan, int(s.seed.value), s.solver.value, s._observer(steps))
+                s.pipeline.place(plan, int(s.seed.value), s.solver.value, s.observer(steps))
         self.show(apartment, steps, scene_id=scene_id)
-        s._set_unsaved(False)
+        s.set_unsaved(False)
         s.instruction.value = apartment.task_graph.instruction
         s.say(f"Opened scene {scene_id}, version {number}: an apartment of {len(apartment.scenes)} rooms "
               f"(seed {stored['seed']}, solver `{stored['solver']}`).")

@@ -113,7 +113,7 @@ class HeadsetPanel:
 
     def send(self) -> None:
         session = self.headset.value.rsplit(" · ", 1)[-1] if self.headset.value != "-" else None
-        sid, number = self.session._selected_scene(), self.session._selected_version()
+        sid, number = self.session.scenes.selected()
         if session is None:
             self.progress.content = "**Error:** no paired headset; enter the pairing token on the headset first."
             return

@@ -2,50 +2,46 @@
 
 Above the tabs: the status and progress lines, the view buttons (fit, top, VR user's view), undo / redo,
 the live checks and the picked object's panel (pose fields, 90 degree turns), so they show on every tab.
-Tabs: Task (instruction, room type, seed, solver, Generate; the task graph with role corrections),
-Placement (play / pause / step / speed, heat-map, energy plot), Constraints (per-object list with
-dropdowns, raw text, metrics), Scenes (accept & save, stored scenes and versions, downloads) and Headset.
+Tabs: Task (instruction, room type, seed, solver, Generate; the task graph with role corrections) and
+Placement (play / pause / step / speed, heat-map, energy plot) are here; Constraints
+(frontend.constraints_panel), Scenes (frontend.scenes_panel) and Headset (frontend.headset_panel) are panels
+of their own that act through the session's shared steps (`run`, `busy`, `confirm`, `say`).
 """
 
 from __future__ import annotations
 
 import contextlib
-import json
 import logging
-import re
 import threading
 import time
-from dataclasses import dataclass, field, replace
+from dataclasses import replace
 
 import numpy as np
 import viser
 from viser import _messages
 
-from app.pipeline import Generation, Pipeline, generation_of, kept_before_edit, pose_of
+from app.pipeline import Generation, Pipeline, pose_of
 from frontend import camera
 from frontend.apartment import ApartmentMode
+from frontend.captions import graph_summary, metrics_table, parser_note, placing_progress, step_caption, unplaced_note
 from frontend.checks import Finding, run_checks, summary
+from frontend.constraints_panel import ConstraintsPanel
 from frontend.graph_image import render as render_graph
 from frontend.history import History
-from frontend.replay import RoomOf, one_room, placements_at, repeated, room_at
+from frontend.replay import RoomOf, one_room, placements_at, room_at
+from frontend.scenes_panel import ScenesPanel
+from frontend.state import State, Values
 from frontend.view import SceneView, world
-from models.constraints import GLOBALS, RELATIONS, Constraint, read_constraints, write_constraints
 from models.energy.exact import layout_energy
-from models.exports.glb import ROLE_COLOURS
-from models.exports.stored import glb_of, house_of
 from models.language import InstructionError
-from models.metrics import SceneMetrics
-from models.metrics.realism import Check, checks as habit_checks, passed_share
+from models.metrics.realism import checks as habit_checks
 from models.placement import ALL_OBJECTS, DEFAULT_SOLVER, SOLVERS, PlacementStep
-from models.placement.reach_kept import WALLS
-from models.values import Scene, TaskGraph, TaskObject, Unplaced
-from models.values.apartment import APARTMENT, Apartment
+from models.values import Scene, TaskGraph, TaskObject
+from models.values.apartment import APARTMENT
 from models.world import ROOM_TYPES, catalogue
 from studio_db import Store
 from studio_db.store import Edit
 
-ROLE_MARK = {role: f'<span style="color:rgb{tuple(ROLE_COLOURS[role][:3])}">&#9632;</span>'
-             for role in ("key", "anchor", "inference")}
 ROLE_CHOICES = ("key", "anchor", "inference", "key + anchor", "anchor + inference")
 ENERGY_TERMS = ("rel", "collision", "oob", "nav", "aff", "total")
 DEFAULT_INSTRUCTION = "Put a chilled bread on the counter"
@@ -59,45 +55,6 @@ if (!window.__h3dsUnsavedHook) {
   });
 }
 """
-
-
-@dataclass(frozen=True)
-class Values:
-    """What undo restores: the scene and everything derived from the designer's edits."""
-
-    gen: Generation | None = None
-    steps: tuple[PlacementStep, ...] = ()
-    edits: tuple[Edit, ...] = ()
-    reference: SceneMetrics | None = None  # the placer's result the designer started from
-    moved: tuple[tuple[str, tuple[float, float, float]], ...] = ()  # the designer's moves: id, pose put at
-
-
-@dataclass
-class State:
-    values: Values = field(default_factory=Values)
-    shown: int = 0  # objects shown so far in the step animation
-    playing: bool = False
-    scene_id: int | None = None
-    seed: int = 0
-    solver: str = DEFAULT_SOLVER
-    runs: int = 0  # scenes shown in this tab so far (numbers the status line)
-    findings: list[Finding] = field(default_factory=list)
-    busy: bool = False
-    unsaved: bool = False
-    view: str = "fit"  # fit | top | vr: what a refit after a window resize restores
-    canvas: tuple[int, int] = (0, 0)
-
-    @property
-    def gen(self) -> Generation | None:
-        return self.values.gen
-
-    @property
-    def steps(self) -> tuple[PlacementStep, ...]:
-        return self.values.steps
-
-    @property
-    def edits(self) -> tuple[Edit, ...]:
-        return self.values.edits
 
 
 class StudioSession:
@@ -187,35 +144,15 @@ class StudioSession:
                 title="Energy terms per step", aspect=1.6, scales={"x": {"time": False}})
 
         with tabs.add_tab("Constraints"):
-            self.c_object = gui.add_dropdown("Object", ("-",))
-            self.c_object.on_update(lambda _: self.show_constraints())
-            self.c_list = gui.add_markdown("")
-            self.c_type = gui.add_dropdown("Constraint", GLOBALS + RELATIONS, initial_value="near")
-            self.c_target = gui.add_dropdown("Target", ("-",))
-            gui.add_button("Add constraint").on_click(lambda _: self.add_constraint())
-            gui.add_button("Remove its relations").on_click(lambda _: self.clear_relations())
-            self.c_text = gui.add_text("Raw constraints", "", multiline=True)
-            gui.add_button("Apply text").on_click(lambda _: self.apply_text(self.c_text.value))
-            self.c_message = gui.add_markdown("")
-            self.metrics_md = gui.add_markdown("")
+            self.constraints = ConstraintsPanel(self, gui)
 
         with tabs.add_tab("Scenes"):
-            self.save_name = gui.add_text("Name", "")
-            gui.add_button("Accept & save", color="blue").on_click(lambda _: self.accept())
-            self.stored = gui.add_dropdown("Stored scene", ("-",))
-            self.stored.on_update(lambda _: self.list_versions())
-            self.version = gui.add_dropdown("Version", ("-",))
-            gui.add_button("Open").on_click(lambda _: self.open_version())
-            gui.add_button("Refresh list").on_click(lambda _: self.list_scenes())
-            gui.add_button("Download house JSON").on_click(lambda _: self.download("house"))
-            gui.add_button("Download GLB").on_click(lambda _: self.download("glb"))
-            gui.add_markdown("Downloads are the selected stored version (the scene on screen if none is "
-                             "stored yet), named `<scene>-v<n>-house.json` and `<scene>-v<n>.glb`.")
+            self.scenes = ScenesPanel(self, gui)
 
         with tabs.add_tab("Headset"):
             from frontend.headset_panel import HeadsetPanel
             self.headset_panel = HeadsetPanel(self, gui)
-        self.list_scenes()
+        self.scenes.list_scenes()
 
     def say(self, text: str) -> None:
         self.status.content = text
@@ -224,13 +161,13 @@ class StudioSession:
         """Run a snippet in this tab (viser's own message for it; there is no public method)."""
         self.client._websock_connection.queue_message(_messages.RunJavascriptMessage(source=source))
 
-    def _set_unsaved(self, unsaved: bool) -> None:
+    def set_unsaved(self, unsaved: bool) -> None:
         """Track unsaved work; while there is some, leaving or reloading the page asks first."""
         if unsaved != self.state.unsaved:
             self.state.unsaved = unsaved
             self._run_js(f"window.__h3dsUnsaved = {'true' if unsaved else 'false'};")
 
-    def _confirm(self, title: str, text: str, yes: str, action) -> None:
+    def confirm(self, title: str, text: str, yes: str, action) -> None:
         """A modal asking the designer to confirm; `action` runs only on `yes`."""
         gui = self.client.gui
         with gui.add_modal(title) as modal:
@@ -241,7 +178,7 @@ class StudioSession:
     # ---- busy state -------------------------------------------------------------------------------
 
     @contextlib.contextmanager
-    def _busy(self, what: str):
+    def busy(self, what: str):
         """Generate and Regenerate are disabled while a pipeline step runs; a second click is ignored."""
         with self.lock:
             if self.state.busy:
@@ -257,7 +194,7 @@ class StudioSession:
             self.progress.content = ""
             self.state.busy = False
 
-    def _observer(self, steps: list[PlacementStep]):
+    def observer(self, steps: list[PlacementStep]):
         last = [0.0]
 
         def observe(step: PlacementStep) -> None:
@@ -271,7 +208,7 @@ class StudioSession:
     # ---- generating -------------------------------------------------------------------------------
 
     def generate(self) -> None:
-        with self._busy("Reading the instruction") as free:
+        with self.busy("Reading the instruction") as free:
             if not free:
                 return
             if self.room.value == APARTMENT:
@@ -288,14 +225,14 @@ class StudioSession:
                 return
             self.progress.content = "⏳ Planning the room and placing objects…"
             seed, solver = int(self.seed.value), self.solver.value
-            self._run(lambda observer: self.pipeline.generate_from_graph(graph, seed, solver, observer),
-                      fresh=True, note=_parser_note(graph))
+            self.run(lambda observer: self.pipeline.generate_from_graph(graph, seed, solver, observer),
+                      fresh=True, note=parser_note(graph))
 
     def _clear_graph(self) -> None:
         self.graph_md.content = ""
         self.graph_img.visible = False
 
-    def _run(self, make, fresh: bool, note: str = "", record: str | None = None, keep_reference: bool = False) -> bool:
+    def run(self, make, fresh: bool, note: str = "", record: str | None = None, keep_reference: bool = False) -> bool:
         """Run a pipeline step with an observer collecting placement steps, then show the result.
 
         `fresh`: a new scene (no edits, not stored, camera framed); `record`: an undoable edit's label;
@@ -303,7 +240,7 @@ class StudioSession:
         started = time.perf_counter()
         steps: list[PlacementStep] = []
         try:
-            gen = make(self._observer(steps))
+            gen = make(self.observer(steps))
         except Exception as e:  # shown to the designer; the stored scenes and the current one are untouched
             logging.getLogger(__name__).exception("pipeline step failed")
             self.say(f"**Error:** {type(e).__name__}: {e}")
@@ -328,7 +265,7 @@ class StudioSession:
         if fresh:
             self.set_view("fit" if self.state.view != "top" else "top")
         self.refresh_panels()
-        self._set_unsaved(True)
+        self.set_unsaved(True)
         placed = len(gen.layout.placements)
         self.say(f"Scene ready (#{self.state.runs}): {placed} placed, {len(gen.layout.unplaced)} unplaced "
                  f"({1000 * (time.perf_counter() - started):.0f} ms). Room: **{gen.task_graph.room_type}**."
@@ -508,36 +445,15 @@ class StudioSession:
     # ---- panels -----------------------------------------------------------------------------------
 
     def refresh_panels(self) -> None:
-        gen = self.state.gen
-        g = gen.task_graph
-        lines = [f"**Room:** {g.room_type} · **task:** `{g.task_type}`", ""]
-        for role, title in (("key", "Key objects"), ("anchor", "Anchor object"), ("inference", "Inference objects")):
-            names = [o.type for o in g.objects if role in o.roles]
-            lines.append(f"{ROLE_MARK[role]} **{title}:** {', '.join(names) if names else '—'}")
-        lines += ["", "**Relations:** " + ("; ".join(f"{a} *{r}* {b}" for a, r, b in g.relations) or "—")]
-        self.graph_md.content = "\n\n".join(lines)
-        threading.Thread(target=self._draw_graph, args=(g,), daemon=True).start()
+        g = self.state.gen.task_graph
+        self.graph_md.content = graph_summary(g)
+        threading.Thread(target=self.draw_graph, args=(g,), daemon=True).start()
         self.role_object.options = tuple(o.type for o in g.objects) or ("-",)
-        ids = tuple(o.id for o in gen.plan.objects) or ("-",)
-        self.c_object.options = ids
-        self.c_target.options = ids
-        self.c_text.value = gen.plan.constraints
-        self.show_constraints()
+        self.constraints.update()
 
-    def _draw_graph(self, graph: TaskGraph) -> None:
+    def draw_graph(self, graph: TaskGraph) -> None:
         self.graph_img.image = render_graph(graph)
         self.graph_img.visible = True
-
-    def show_constraints(self) -> None:
-        gen = self.state.gen
-        if gen is None or self.c_object.value not in {o.id for o in gen.plan.objects}:
-            return
-        cs = read_constraints(gen.plan.constraints, [o.id for o in gen.plan.objects],
-                              lambda oid: catalogue().default_placement(gen.plan.object(oid).type)
-                              if gen.plan.object(oid).type in catalogue() else "edge")
-        oc = cs.objects[self.c_object.value]
-        items = [f"- `{oc.placement}`"] + [f"- `{c.name}` → `{c.target}`" for c in oc.relations]
-        self.c_list.content = f"**{oc.object_id}**\n\n" + "\n".join(items)
 
     def refresh_checks(self, gen: Generation | None = None) -> list[Finding]:
         """Run the checks on the scene (or on a drag in progress) and show them with the metrics."""
@@ -548,15 +464,8 @@ class StudioSession:
         if gen is self.state.gen:
             self.state.findings = findings
         self.checks_md.content = summary(findings)
-        e = layout_energy(gen.plan, gen.layout.placements).as_dict()
-        habits = habit_checks(gen.plan, gen.layout)
-        self.metrics_md.content = (
-            "| metric | value |\n| --- | --- |\n"
-            f"| CNT | {100 * m.cnt:.0f} % |\n| SR | {_pct(m.sr)} |\n| NAV | {100 * m.nav:.1f} % |\n"
-            f"| Key_NAV | {_pct(m.key_nav)} |\n| OOB | {100 * m.oob:.0f} % |\n| collisions | {m.collisions} |\n"
-            f"| constraints met | {100 * m.constraint_satisfaction:.0f} % |\n"
-            f"| realism (iTHOR habits) | {_pct(passed_share(habits))} |\n"
-            f"| energy (total) | {e['total']:.3f} |" + habits_note(habits))
+        energy = layout_energy(gen.plan, gen.layout.placements).total
+        self.constraints.metrics.content = metrics_table(m, energy, habit_checks(gen.plan, gen.layout))
         return findings
 
     # ---- picking and moving -----------------------------------------------------------------------
@@ -576,8 +485,7 @@ class StudioSession:
             return
         self._show_picked(obj)
         if gen is not None and obj.id in {o.id for o in gen.plan.objects}:
-            self.c_object.value = obj.id
-            self.show_constraints()
+            self.constraints.select(obj.id)
         self._place_controls()
 
     def _show_picked(self, obj) -> None:
@@ -659,7 +567,7 @@ class StudioSession:
         if self.selected == object_id:
             self._show_picked(obj)
         findings = self.refresh_checks()
-        self._set_unsaved(True)
+        self.set_unsaved(True)
         self.say(f"Moved `{object_id}` to ({x:.2f}, {z:.2f}) facing {rotation % 360:.0f}° ({how}). "
                  + (f"⚠ {len(findings)} check(s) fail." if findings else "All checks pass.")
                  + f" {len(self.state.edits)} designer edit(s); **Undo** reverts.")
@@ -681,10 +589,10 @@ class StudioSession:
             self.say("Move an object first (drag it, type a pose or turn it): **Re-place the rest** keeps the "
                      "objects you moved where you put them and places the others again around them.")
             return
-        with self._busy("Re-placing the rest around your moves") as free:
+        with self.busy("Re-placing the rest around your moves") as free:
             if not free:
                 return
-            if not self._run(lambda obs: self.pipeline.replace_around(gen, moved, self.state.seed, self.state.solver,
+            if not self.run(lambda obs: self.pipeline.replace_around(gen, moved, self.state.seed, self.state.solver,
                                                                       obs),
                              fresh=False, record="re-place the rest", keep_reference=True):
                 return
@@ -716,69 +624,8 @@ class StudioSession:
         self.refresh_checks()
         if self.selected:
             self.pick(self.selected)
-        self._set_unsaved(True)
+        self.set_unsaved(True)
         self.say(f"{verb}: {snap.label}.")
-
-    # ---- constraint editing -----------------------------------------------------------------------
-
-    def apply_text(self, text: str) -> None:
-        gen = self.state.gen
-        if gen is None:
-            return
-        ids = [o.id for o in gen.plan.objects]
-        cs = read_constraints(text, ids)
-        if cs.warnings:
-            self.c_message.content = "**Error:** Edit not applied:\n\n" + "\n".join(f"- {w}" for w in cs.warnings)
-            return
-        had = sum(len(oc.relations) for oc in read_constraints(gen.plan.constraints, ids).objects.values())
-        if had and not any(oc.relations for oc in cs.objects.values()):
-            self._confirm("Remove all constraints?",
-                          f"This edit removes all {had} relations between objects and re-places the room.",
-                          "Remove them", lambda: self._replan(text))
-            return
-        self._replan(text)
-
-    def _replan(self, text: str) -> None:
-        gen = self.state.gen
-        with self._busy("Re-placing after the constraint edit") as free:
-            if not free:
-                return
-            kept = kept_before_edit(gen, gen.plan.model_copy(update={"constraints": text}))
-            edit = Edit("constraints", "plan", gen.plan.constraints, text)
-            if not self._run(lambda obs: self.pipeline.replan(gen, text, self.state.seed, self.state.solver, obs),
-                             fresh=False, record="constraint edit", keep_reference=True):
-                return
-            self.state.values = replace(self.state.values, edits=self.state.edits + (edit,))
-        moved = [p.id for p in self.state.gen.layout.placements
-                 if (q := gen.layout.placement(p.id)) is None or (q.x, q.z, q.rotation) != (p.x, p.z, p.rotation)]
-        self.c_message.content = (f"Re-placed after the edit ({len(kept)} objects before the edited one kept); "
-                                  f"moved: {', '.join(moved) or 'nothing'}.")
-
-    def _edit_object(self, change) -> None:
-        gen = self.state.gen
-        if gen is None or self.c_object.value not in {o.id for o in gen.plan.objects}:
-            return
-        ids = [o.id for o in gen.plan.objects]
-        cs = read_constraints(gen.plan.constraints, ids)
-        change(cs.objects[self.c_object.value])
-        self.apply_text(write_constraints(cs))
-
-    def add_constraint(self) -> None:
-        name, target = self.c_type.value, self.c_target.value
-
-        def change(oc):
-            if name in GLOBALS:
-                oc.placement = name
-            elif target == oc.object_id:
-                self.c_message.content = "**Error:** An object cannot be constrained to itself."
-                raise _Rejected
-            else:
-                oc.relations.append(Constraint(name, target))
-        with contextlib.suppress(_Rejected):
-            self._edit_object(change)
-
-    def clear_relations(self) -> None:
-        self._edit_object(lambda oc: oc.relations.clear())
 
     # ---- task graph corrections -------------------------------------------------------------------
 
@@ -791,7 +638,7 @@ class StudioSession:
         self.state.values = replace(self.state.values, gen=Generation(graph, gen.room_plan, gen.plan, gen.layout,
                                                                        gen.scene), edits=self.state.edits + (edit,))
         self.refresh_panels()
-        self._set_unsaved(True)
+        self.set_unsaved(True)
         self.say(f"Task graph edited ({note}). Press **Regenerate from graph** to rebuild the room.")
 
     def set_role(self) -> None:
@@ -825,203 +672,11 @@ class StudioSession:
         gen = self.state.gen
         if gen is None:
             return
-        with self._busy("Regenerating from the corrected graph") as free:
+        with self.busy("Regenerating from the corrected graph") as free:
             if not free:
                 return
             graph: TaskGraph = gen.task_graph
             keep = {o.type for o in graph.objects}
             graph = graph.model_copy(update={"relations": [r for r in graph.relations if r[0] in keep and r[2] in keep]})
-            self._run(lambda obs: self.pipeline.generate_from_graph(graph, self.state.seed, self.state.solver, obs),
+            self.run(lambda obs: self.pipeline.generate_from_graph(graph, self.state.seed, self.state.solver, obs),
                       fresh=False, record="regenerate from graph")
-
-    # ---- storing and exporting --------------------------------------------------------------------
-
-    def accept(self) -> None:
-        gen = self.state.gen
-        if self.apartment.current is not None:
-            self.apartment.save()
-            return
-        if gen is None:
-            self.say("**Error:** Nothing to save yet: generate a scene first.")
-            return
-        findings = self.refresh_checks()
-        if findings:
-            listed = "\n".join(f"- ⚠ {f.text}" for f in findings)
-            self._confirm(f"Save a scene that fails {len(findings)} check(s)?",
-                          f"{listed}\n\nSaving anyway records that the checks were overridden.",
-                          "Save anyway", lambda: self._save(findings))
-            return
-        self._save([])
-
-    def _save(self, overridden: list[Finding]) -> None:
-        gen = self.state.gen
-        name = self.save_name.value.strip() or gen.task_graph.instruction[:60]
-        edits = list(self.state.edits)
-        if overridden:
-            edits.append(Edit("override", "checks", [f.text for f in overridden], "saved anyway"))
-        sid, number = self.store_version(name, gen.scene, edits)
-        self.state.values = replace(self.state.values, edits=())
-        self.say(f"Saved as scene {sid}, version {number} (“{name}”)"
-                 + (f", overriding {len(overridden)} failed check(s)." if overridden else "."))
-
-    def store_version(self, name: str, value: Scene | Apartment, edits: list[Edit]) -> tuple[int, int]:
-        """Store as a new scene, or as the next version of the stored scene on screen; select it in the
-        Scenes tab. Returns (scene id, version number)."""
-        if self.state.scene_id is None:
-            sid, number = self.store.create_scene(name, value, self.state.seed, self.state.solver, edits)
-            self.state.scene_id = sid
-        else:
-            sid = self.state.scene_id
-            number = self.store.add_version(sid, name, value, self.state.seed, self.state.solver, edits)
-        self.list_scenes(select=(sid, number))
-        self._set_unsaved(False)
-        return sid, number
-
-    def list_scenes(self, select: tuple[int, int] | None = None) -> None:
-        scenes = self.store.list_scenes()
-        self.stored.options = tuple(f"{s['id']}: {s['name'][:50]}" for s in scenes) or ("-",)
-        if select is not None:
-            self.stored.value = next(o for o in self.stored.options if o.split(":")[0] == str(select[0]))
-        self.list_versions(select[1] if select else None)
-
-    def list_versions(self, number: int | None = None) -> None:
-        sid = self._selected_scene()
-        versions = self.store.versions(sid) if sid is not None else []
-        self.version.options = tuple(f"v{v['number']}: {v['name'][:40]}" for v in versions) or ("-",)
-        if versions:
-            self.version.value = next((o for o in self.version.options if o.startswith(f"v{number}:")),
-                                      self.version.options[-1])
-
-    def _selected_scene(self) -> int | None:
-        value = self.stored.value
-        return int(value.split(":")[0]) if value and value != "-" else None
-
-    def _selected_version(self) -> int | None:
-        value = self.version.value
-        return int(value.split(":")[0].removeprefix("v")) if value and value != "-" else None
-
-    def open_version(self) -> None:
-        sid, number = self._selected_scene(), self._selected_version()
-        if sid is None or number is None:
-            self.say("**Error:** No stored scene selected.")
-            return
-        scene = self.store.scene(sid, number)
-        stored = self.store.versions(sid)[number - 1]
-        if isinstance(scene, Apartment):
-            self._use_stored_settings(stored)
-            self.apartment.open(scene, sid, number, stored)
-            return
-        try:
-            gen = generation_of(scene)
-        except ValueError as e:
-            self.say(f"**Error:** {e}")
-            return
-        self._use_stored_settings(stored)
-        with self._busy("Opening the stored scene") as free:
-            if not free:
-                return
-            self._run(lambda observer: self._replayable(gen, observer), fresh=True)
-        self.state.scene_id = sid
-        self._set_unsaved(False)
-        self.instruction.value = gen.task_graph.instruction
-        self.say(f"Opened scene {sid}, version {number}: {len(gen.layout.placements)} objects. The Placement "
-                 f"tab replays the placer re-run with the stored seed ({stored['seed']}) and solver "
-                 f"(`{stored['solver']}`); each object lands at its stored pose.")
-
-    def _use_stored_settings(self, stored: dict) -> None:
-        """The Task tab's seed and solver become the stored version's (the replay uses them)."""
-        self.seed.value = stored["seed"]
-        if stored["solver"] in SOLVERS:
-            self.solver.value = stored["solver"]
-
-    def _replayable(self, gen: Generation, observer) -> Generation:
-        """A stored scene has no recorded steps: re-run its placer with the stored seed for the order and
-        candidates of each step; the stored layout (with the designer's moves) stays what is shown."""
-        with contextlib.suppress(Exception):  # a solver that no longer exists: the scene opens without replay
-            self.pipeline.place(gen.plan, int(self.seed.value), self.solver.value, observer)
-        return gen
-
-    def download(self, kind: str) -> None:
-        """The selected stored version, named after it; the scene on screen when nothing is stored."""
-        sid, number = self._selected_scene(), self._selected_version()
-        if self.apartment.current is not None and (sid is None or number is None):
-            value = self.apartment.current
-            stem = f"{_slug(value.task_graph.instruction)}-apartment-unsaved"
-        elif sid is not None and number is not None:
-            value = self.store.scene(sid, number)
-            name = next((s["name"] for s in self.store.list_scenes() if s["id"] == sid), f"scene-{sid}")
-            stem = f"{_slug(name) or f'scene-{sid}'}-v{number}"
-        elif self.state.gen is not None:
-            value, stem = self.state.gen.scene, f"{_slug(self.state.gen.task_graph.instruction)}-unsaved"
-        else:
-            self.say("**Error:** Nothing to download: generate or open a scene first.")
-            return
-        if kind == "house":
-            self.client.send_file_download(f"{stem}-house.json", json.dumps(house_of(value), indent=2).encode(),
-                                           save_immediately=True)
-        else:
-            self.client.send_file_download(f"{stem}.glb", glb_of(value), save_immediately=True)
-        self.say(f"Downloaded `{stem}` ({'house JSON' if kind == 'house' else 'GLB'}).")
-
-
-def placing_progress(steps: list[PlacementStep]) -> str:
-    """The progress line while the placer works: how many steps so far and whether the last one placed an object
-    or repaired one placed before in the same solve (frontend.replay.repeated)."""
-    doing = "repairing" if repeated(steps, len(steps)) else "placing"
-    return f"⏳ Placing objects: step {len(steps)}, {doing} (last `{steps[-1].object_id}`)…"
-
-
-def unplaced_note(unplaced: list[Unplaced]) -> str:
-    """What the placer left out and why; for an object left out to keep a task object reachable, the solver that
-    places it anyway."""
-    if not unplaced:
-        return ""
-    lines = [f"- `{u.id}`: {u.reason}" for u in unplaced]
-    if any(u.reason == WALLS for u in unplaced):
-        lines.append(f"The solver `{ALL_OBJECTS}` places every object it can, even one that cuts a task object off.")
-    return "Left out:\n" + "\n".join(lines)
-
-
-def habits_note(found: list[Check]) -> str:
-    """The realism judge's checks the layout fails, each as the habit of the iTHOR rooms it misses (a stand-in for a
-    human or VLM judge: models.metrics.realism)."""
-    missed = [c for c in found if not c.passed]
-    if not missed:
-        return ""
-    habit = {"wall": "stands against a wall, facing into the room", "free": "stands free of the walls",
-             "companion": "stands by a {}"}
-    lines = [f"- `{c.object_id}` {habit[c.kind].format(c.other)}" for c in missed]
-    return "\n\nHabits of the iTHOR rooms not kept here:\n" + "\n".join(lines)
-
-
-def step_caption(steps: list[PlacementStep], shown: int, obj, room: str = "", room_of: RoomOf = one_room) -> str:
-    """The Placement tab's line for step number `shown` (1-based) of `steps`: the object, where it went (`obj`:
-    the object as displayed, None if unplaced) and, for a repair's move or a guarded choice, its reason. A step
-    placing an object already placed in the same solve of its room is a repair's (frontend.replay.repeated)."""
-    step = steps[shown - 1]
-    where = "no valid position (unplaced)" if obj is None else \
-        f"x {obj.x:.2f} m, z {obj.z:.2f} m, facing {obj.rotation:.0f}°"
-    doing = "repair: placing" if repeated(steps, shown, room_of) else "placing"
-    why = f" ({step.why})" if step.why else ""
-    return f"**Step {shown} / {len(steps)}**: {room}{doing} `{step.object_id}` at {where}{why}"
-
-
-def _slug(text: str) -> str:
-    return re.sub(r"[^a-z0-9]+", "-", text.lower()).strip("-")[:48]
-
-
-def _parser_note(graph: TaskGraph) -> str:
-    """The parser's doubts in words (several tasks, not English, unknown objects), shown with the scene."""
-    if not graph.uncertain:
-        return ""
-    messages = graph.messages or ["the parser is unsure about this instruction"]
-    return "⚠ **Check the task graph:** " + " ".join(messages)
-
-
-class _Rejected(Exception):
-    pass
-
-
-def _pct(value: float | None) -> str:
-    """A metric in percent, or n/a when the plan has nothing for it to check (no task object)."""
-    return "n/a" if value is None else f"{100 * value:.0f} %"

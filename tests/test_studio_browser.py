@@ -42,11 +42,11 @@ def test_designer_flow(browser, studio):
     page.get_by_role("tab", name="Constraints").click()
     raw = field(page, "Raw constraints")
     original = raw.input_value()
-    enter(page, "Raw constraints", original + "\nghost-line | levitate", session.c_text)
+    enter(page, "Raw constraints", original + "\nghost-line | levitate", session.constraints.text)
     page.get_by_role("button", name="Apply text").click()
     page.get_by_text(re.compile("Edit not applied")).wait_for(timeout=WAIT)
     edited = re.sub(r"fridge-0 \| edge[^\n]*", "fridge-0 | middle | far, countertop-0", original)
-    enter(page, "Raw constraints", edited, session.c_text)
+    enter(page, "Raw constraints", edited, session.constraints.text)
     page.get_by_role("button", name="Apply text").click()
     moved = page.get_by_text(re.compile("Re-placed after the edit"))
     moved.wait_for(timeout=WAIT)
@@ -59,7 +59,7 @@ def test_designer_flow(browser, studio):
     assert session.state.gen.plan.constraints == edited
 
     page.get_by_role("tab", name="Scenes").click()
-    enter(page, "Name", "bread in the browser", session.save_name)
+    enter(page, "Name", "bread in the browser", session.scenes.save_name)
     page.get_by_role("button", name="Accept & save").click()
     if session.state.findings:  # the re-placed scene may fail a check: the designer confirms
         page.get_by_role("button", name="Save anyway").click()

@@ -176,7 +176,7 @@ def test_downloads_are_the_selected_version(browser, studio):
     session = session_of(studio, before)
     generate(page, session, "Put a chilled bread on the counter", "kitchen")
     page.get_by_role("tab", name="Scenes").click()
-    enter(page, "Name", "versions", session.save_name)
+    enter(page, "Name", "versions", session.scenes.save_name)
     page.get_by_role("button", name="Accept & save").click()
     if session.state.findings:  # the placer's own layout may already fail a check (asked before saving)
         page.get_by_role("button", name="Save anyway").click()

@@ -91,16 +91,16 @@ def test_checks_flag_collisions_doorway_start_and_metric_drops(pipeline):
 
 
 def test_parser_doubts_are_shown():
-    from frontend.session import _parser_note
+    from frontend.captions import parser_note
 
     graph = TaskGraph(instruction="x", room_type="kitchen", task_type="pick_and_place_simple", objects=[],
                       relations=[], uncertain=True, messages=["Two tasks were found; only the first is used."])
-    assert "Two tasks" in _parser_note(graph)
-    assert _parser_note(graph.model_copy(update={"uncertain": False})) == ""
+    assert "Two tasks" in parser_note(graph)
+    assert parser_note(graph.model_copy(update={"uncertain": False})) == ""
 
 
 def test_a_repair_step_says_why_the_object_moved():
-    from frontend.session import step_caption
+    from frontend.captions import step_caption
     from models.datasets import load_dataset
     from models.placement.greedy import WALLS_OFF, GreedySolver
 
@@ -198,7 +198,7 @@ def test_the_energy_plot_follows_the_room_the_animation_shows():
 
 
 def test_the_progress_line_says_what_the_placer_is_doing():
-    from frontend.session import placing_progress
+    from frontend.captions import placing_progress
 
     steps = [_step("table-0", (1.0, 1.0, 0.0)), _step("chair-0", (2.0, 1.0, 0.0))]
     assert placing_progress(steps) == "⏳ Placing objects: step 2, placing (last `chair-0`)…"
@@ -226,7 +226,7 @@ def test_in_an_apartment_a_solve_from_the_start_takes_up_only_its_own_rooms_obje
 
 
 def test_the_ready_line_says_what_was_left_out_and_which_solver_places_it():
-    from frontend.session import unplaced_note
+    from frontend.captions import unplaced_note
     from models.datasets import load_dataset
     from models.placement import ALL_OBJECTS, get_solver
     from models.placement.reach_kept import WALLS
@@ -242,7 +242,7 @@ def test_the_ready_line_says_what_was_left_out_and_which_solver_places_it():
 
 
 def test_the_metrics_panel_names_each_habit_the_layout_misses():
-    from frontend.session import habits_note
+    from frontend.captions import habits_note
     from models.metrics.realism import Check
 
     note = habits_note([Check("bed", "wall", True), Check("side", "companion", False, "Bed"),

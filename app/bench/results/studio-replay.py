@@ -13,7 +13,8 @@ import time
 from app.bench.studio import ARGS
 from app.pipeline import Pipeline
 from frontend.server import Studio
-from frontend.session import StudioSession, step_caption
+from frontend.captions import step_caption
+from frontend.session import StudioSession
 from studio_db import Store
 
 RUNS = 6
