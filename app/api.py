@@ -6,10 +6,12 @@ gets a 422 that names the field. OpenAPI docs are served at /docs.
 
 from __future__ import annotations
 
+import asyncio
 import json
 from typing import Annotated
 
-from fastapi import FastAPI, HTTPException, Response
+from fastapi import FastAPI, HTTPException, Query, Response
+from fastapi.responses import StreamingResponse
 from pydantic import AfterValidator, BaseModel, Field, model_validator
 
 from app.bridge import bridge_for, mount
@@ -18,6 +20,7 @@ from models.exports.apartment import apartment_house
 from models.exports.stored import glb_of, house_of
 from models.language import InstructionError, check_instruction
 from models.placement import DEFAULT_SOLVER, SOLVERS
+from models.placement.stepping import TOP, step_record
 from models.planning.apartment_planner import ApartmentError, is_apartment, parse_rooms
 from models.planning.floorplan import FloorplanError
 from models.values import ConstraintPlan, Scene
@@ -25,6 +28,10 @@ from models.values.apartment import APARTMENT, Apartment
 from models.world import normalise_room_type
 from studio_db import NotFound, Store
 from studio_db.store import Edit, Stored, WrongKind
+
+
+NDJSON = "application/x-ndjson"
+MAX_TOP = 100_000  # candidates a step record may list: every candidate of a step, for a floor heat-map
 
 
 def _known_solver(name: str) -> str:
@@ -133,6 +140,30 @@ def create_app(store: Store, pipeline: Pipeline | None = None) -> FastAPI:
         """Place a plan's objects (the layout JSON of interfaces.md); the `keep` poses (object id -> x, z,
         rotation) stay as they are and the rest is placed around them."""
         return json.loads(dump(pipeline.place(req.plan, req.seed, req.solver, keep=req.keep or None)))
+
+    @app.post("/place/steps", response_class=StreamingResponse,
+              responses={200: {"content": {NDJSON: {}}, "description": "one JSON object per line"}})
+    def place_steps(req: PlaceRequest, top: Annotated[int, Query(ge=0, le=MAX_TOP)] = TOP) -> StreamingResponse:
+        """`POST /place` step by step, as the placer makes each step: one JSON line per step (`h3ds place --steps`:
+        pose, energy terms, reason, `restart`, and the `top` best candidates with their scores, Plan2Place's the
+        policy's probabilities), then `{"layout": ...}`; a solver that fails ends the stream with `{"error": ...}`."""
+        async def lines():
+            loop, made = asyncio.get_running_loop(), asyncio.Queue()
+            observe = lambda step: loop.call_soon_threadsafe(made.put_nowait, step)  # noqa: E731 - from the solver
+            placing = loop.run_in_executor(None, lambda: pipeline.place(req.plan, req.seed, req.solver, observe,
+                                                                        req.keep or None))
+            placing.add_done_callback(lambda _: loop.call_soon_threadsafe(made.put_nowait, None))
+            k = 0
+            while (step := await made.get()) is not None:
+                k += 1
+                yield json.dumps(step_record(step, k, top)) + "\n"
+            try:
+                layout = placing.result()
+            except Exception as e:  # the status line is sent already: the stream's last line says what failed
+                yield json.dumps({"error": f"{type(e).__name__}: {e}"}) + "\n"
+                return
+            yield json.dumps({"layout": json.loads(dump(layout))}) + "\n"
+        return StreamingResponse(lines(), media_type=NDJSON)
 
     @app.post("/scenes", status_code=201)
     def accept(req: AcceptRequest) -> dict:

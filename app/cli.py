@@ -132,7 +132,7 @@ def cmd_place(args) -> int:
         raise BadInput("--keep takes one plan")
     for plan in plans:
         keep = load_kept(args.keep, plan) if args.keep else None
-        layout = _place_stepwise(plan, args, keep) if args.steps else \
+        layout = _place_stepwise(pipeline, plan, args, keep) if args.steps else \
             pipeline.place(plan, seed=args.seed, solver=args.solver, keep=keep)
         if args.out_dir:
             Path(args.out_dir).mkdir(parents=True, exist_ok=True)
@@ -144,12 +144,11 @@ def cmd_place(args) -> int:
     return 0
 
 
-def _place_stepwise(plan, args, keep):
+def _place_stepwise(pipeline, plan, args, keep):
     """Place `plan` (`keep`: poses kept), writing each step as a JSON line to `args.steps` (a path, or - for
     stdout) as it is made."""
-    from models.placement import get_solver
-    from models.placement.stepping import Stepping, step_record
-    stepping = Stepping(get_solver(args.solver), plan, seed=args.seed, fixed=keep)
+    from models.placement.stepping import step_record
+    stepping = pipeline.stepping(plan, seed=args.seed, solver=args.solver, keep=keep)
     with (nullcontext(sys.stdout) if args.steps == "-" else open(args.steps, "w")) as out:
         for k, step in enumerate(stepping, 1):
             print(json.dumps(step_record(step, k)), file=out, flush=True)
@@ -427,7 +426,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     p = sub.add_parser("bench", help="benchmarks that print figures: parser, generate, placement, energy")
     p.add_argument("what", choices=["parser", "generate", "placement", "energy", "studio", "language", "vrpose",
-                                          "plan2place", "bridge", "batch"])
+                                          "plan2place", "bridge", "batch", "steps"])
     p.add_argument("--n", type=int, default=30, help="instructions (generate) or plans (placement) to run")
     p.add_argument("--split", default="valid_unseen", help="ALFRED split to score (parser)")
     p.add_argument("--room-type", default=None, choices=["apartment"], help="generate: apartments instead of "
@@ -435,10 +434,10 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--rooms", default=None, help="generate --room-type apartment: the same rooms for every "
                    "instruction (default: drawn from each task)")
     p.add_argument("--dataset", default="seen", choices=["seen", "unseen_a", "unseen_b", "dense", "human", "varied"],
-                   help="placement: which constraint dataset (plan2place only: varied, the checkpoint-choice plans)")
+                   help="placement, steps: which constraint dataset (plan2place only: varied, the checkpoint-choice plans)")
     p.add_argument("--solvers", default=None, help="comma-separated solver names; placement: default dfs,milp,z3; "
                    "generate: default dfs and the default solver")
-    p.add_argument("--seeds", type=int, default=5, help="placement: seeds per plan")
+    p.add_argument("--seeds", type=int, default=5, help="placement, steps: seeds per plan")
     p.add_argument("--budget", type=float, default=None, help="placement: time budget per plan (s)")
     p.add_argument("--out", default=None, help="placement, language: folder for results and plots")
     p.add_argument("--adapter", default=None, metavar="DIR", help="language: the LoRA adapter to measure "

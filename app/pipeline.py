@@ -19,6 +19,7 @@ from models.language.combined import make_parser
 from models.metrics.placement import AREA_TOL
 from models.placement import PlacementProblem, StepObserver, get_solver
 from models.placement.base import Fixed
+from models.placement.stepping import Stepping
 from models.planning import ConstraintWriter, RoomPlanner
 from models.planning.apartment_planner import ApartmentPlanner
 from models.scene import assemble_scene
@@ -53,6 +54,11 @@ class Pipeline:
     def place(self, plan: ConstraintPlan, seed: int = 0, solver: str | None = None,
               observer: StepObserver | None = None, keep: Fixed | None = None) -> Layout:
         return get_solver(solver or self.solver).solve(plan, seed=seed, observer=observer, fixed=keep)
+
+    def stepping(self, plan: ConstraintPlan, seed: int = 0, solver: str | None = None,
+                 keep: Fixed | None = None) -> Stepping:
+        """`place` as an iterator of its steps (models.placement.stepping); the layout is its `layout` after them."""
+        return Stepping(get_solver(solver or self.solver), plan, seed=seed, fixed=keep)
 
     def generate(self, instruction: str, room_type: str, seed: int = 0, solver: str | None = None,
                  observer: StepObserver | None = None) -> Generation:

@@ -71,7 +71,8 @@ def test_missing_things_are_404(db_url):
 
 def test_openapi_documents_every_route(db_url):
     paths = client(db_url).get("/openapi.json").json()["paths"]
-    assert {"/generate", "/scenes", "/scenes/{scene_id}/versions", "/scenes/{scene_id}/versions/{number}/scene.glb",
+    assert {"/generate", "/place", "/place/steps", "/scenes", "/scenes/{scene_id}/versions",
+            "/scenes/{scene_id}/versions/{number}/scene.glb",
             "/health"} <= set(paths)
 
 

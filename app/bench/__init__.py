@@ -24,6 +24,8 @@ def run_benchmark(what: str, args) -> int:
         from app.bench.bridge import main
     elif what == "batch":
         from app.bench.batch import main
+    elif what == "steps":
+        from app.bench.steps import main
     else:
         raise ValueError(f"unknown benchmark {what!r}")
     return main(args)

@@ -5,15 +5,16 @@ policy's probability of every candidate (the floor heat-map), the repairs' steps
 
 from __future__ import annotations
 
-import math
 import queue
 import threading
 from collections.abc import Iterator
 
+import numpy as np
+
 from models.placement.base import Fixed, PlacementStep, Solver
 from models.values import ConstraintPlan, Layout
 
-TOP = 5  # candidates listed per step in a step's record
+TOP = 5  # candidates listed per step in a step's record, unless asked for more
 _DONE = object()
 
 
@@ -45,15 +46,16 @@ class Stepping:
             raise failure[0]
 
 
-def step_record(step: PlacementStep, index: int) -> dict:
+def step_record(step: PlacementStep, index: int, top: int = TOP) -> dict:
     """One step as JSON-ready data: the pose (None when the object was left out), the energy terms after it,
     why a repair moved it (or the reach guard chose it), whether the room is solved again from empty at this step
-    (`restart`, models.placement.reorder), how many candidates were legal, and the `TOP`
-    best-scored ones (x, z, rotation, score; Plan2Place's scores are the policy's probabilities)."""
-    legal = [i for i, s in enumerate(step.scores) if math.isfinite(s)]
-    best = sorted(legal, key=lambda i: -step.scores[i])[:TOP]
+    (`restart`, models.placement.reorder), how many candidates were legal, and the `top` best-scored ones (x, z,
+    rotation, score; Plan2Place's scores are the policy's probabilities: all of them make the floor heat-map)."""
+    scores = np.asarray(step.scores, dtype=float)
+    legal = np.flatnonzero(np.isfinite(scores))
+    best = legal[np.argsort(-scores[legal], kind="stable")[:top]]  # ties in candidate order
     return {"step": index, "object": step.object_id, "x": step.x, "z": step.z, "rotation": step.rotation,
             "why": step.why, "restart": step.restart, "terms": {k: round(v, 6) for k, v in step.terms.items()},
-            "candidates": len(step.scores), "legal": len(legal),
-            "top": [[*(round(float(v), 4) for v in step.candidates[i]), round(float(step.scores[i]), 6)]
-                    for i in best]}
+            "candidates": len(scores), "legal": len(legal),
+            "top": np.column_stack([np.round(np.asarray(step.candidates, dtype=float)[best], 4),
+                                    np.round(scores[best], 6)]).tolist()}
