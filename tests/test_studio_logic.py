@@ -249,3 +249,33 @@ def test_the_metrics_panel_names_each_habit_the_layout_misses():
                         Check("chair", "free", False)])
     assert "`side` stands by a Bed" in note and "`chair` stands free of the walls" in note and "`bed`" not in note
     assert habits_note([Check("bed", "wall", True)]) == "" and habits_note([]) == ""
+
+
+def test_the_metrics_table_says_n_a_where_nothing_is_measured_and_lists_missed_habits():
+    from frontend.captions import metrics_table
+    from models.metrics import SceneMetrics
+    from models.metrics.realism import Check
+
+    m = SceneMetrics(cnt=0.5, sr=None, nav=0.25, key_nav=None, oob=0.0, collisions=1, constraint_satisfaction=0.75,
+                     pto=0.0, n_objects=2, time_s=0.0, complete=False, n_task=0)
+    table = metrics_table(m, 1.23456, [Check("bed", "wall", True), Check("side", "companion", False, "Bed")])
+    assert "| CNT | 50 % |" in table and "| SR | n/a |" in table and "| Key_NAV | n/a |" in table
+    assert "| realism (iTHOR habits) | 50 % |" in table and "| energy (total) | 1.235 |" in table
+    assert "`side` stands by a Bed" in table
+    assert "| realism (iTHOR habits) | n/a |" in metrics_table(m, 0.0, [])  # no habit to check: no score
+
+
+def test_the_task_graph_reading_lists_each_role_and_the_relations():
+    from frontend.captions import graph_summary
+    from models.values import TaskGraph
+
+    graph = TaskGraph.model_validate({
+        "instruction": "Put a chilled bread on the counter", "room_type": "kitchen",
+        "task_type": "pick_cool_then_place_in_recep", "objects": [
+            {"type": "Bread", "roles": ["key"]}, {"type": "CounterTop", "roles": ["key", "anchor"]},
+            {"type": "Fridge", "roles": ["inference"]}],
+        "relations": [["Bread", "cooled_in", "Fridge"], ["Bread", "placed_at", "CounterTop"]]})
+    text = graph_summary(graph)
+    assert "**Key objects:** Bread, CounterTop" in text and "**Anchor object:** CounterTop" in text
+    assert "**Inference objects:** Fridge" in text and "Bread *cooled_in* Fridge; Bread *placed_at* CounterTop" in text
+    assert "**Relations:** —" in graph_summary(graph.model_copy(update={"relations": []}))
