@@ -281,8 +281,8 @@ def place_stepwise(plan: ConstraintPlan, rng: np.random.Generator, choose: Choos
             ep = broken_first(ep, repair_layout, lambda first, seen: _steps(plan, copy.deepcopy(start), choose, fixed,
                                                                              seen, first, first_solve), observer)
             if keep_reach:
-                ep = solve_keeping(ep, repair_layout, lambda seen: _steps(plan, copy.deepcopy(start), choose, fixed,
-                                                                          seen, (), first_solve, kept_step), observer)
+                ep = solve_keeping(ep, repair_layout, lambda first, seen: _steps(
+                    plan, copy.deepcopy(start), choose, fixed, seen, first, first_solve, kept_step), observer)
     return ep
 
 

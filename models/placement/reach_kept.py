@@ -33,7 +33,7 @@ from models.placement.reorder import Repair
 WALLS = "left out: each of its poses would cut a task object off from the robot"  # a left-out object's reason
 AGAIN = "solved again keeping every task object reachable"  # the reason shown on a kept episode's steps
 
-Steps = Callable[[StepObserver], Episode]  # observer -> the new episode's steps made with `kept_step`
+Steps = Callable[[list[str], StepObserver], Episode]  # (ids to place first, observer) -> steps made with `kept_step`
 
 
 def out_of_reach(ep: Episode) -> int:
@@ -68,7 +68,7 @@ def solve_keeping(ep: Episode, repair: Repair, again: Steps, observer: StepObser
     if not out_of_reach(ep):
         return ep
     steps: list[PlacementStep] = []
-    new = again(steps.append)
+    new = again([], steps.append)
     repair(new, steps.append)
     if not better(new, ep):
         return ep
