@@ -9,8 +9,11 @@ would cut a task object off is left out, with the reason `WALLS`; a task object 
 always placed. The new episode is repaired (the pass that places the left-out objects leaves those alone) and kept
 if it leaves fewer task objects out of reach at a lower energy: the judge's, which charges each object left out 8 / n
 and each task object out of reach through E_nav, so it decides case by case whether a chair or the fridge's reach
-weighs more. Its steps are shown after the first one's, each giving that reason before its own, the first marked
-as a `restart`. Going back a few steps to find such an object a pose that keeps the way open (as
+weighs more. Where that solve leaves objects out for reach, it runs once more with those objects placed first (a
+counter placed after the fridge may find no pose that leaves the fridge reachable, and the fridge one that leaves the
+counter room); that episode replaces it if it leaves no more task objects out of reach at a lower energy
+(`walls-first/`). The kept episode's steps are shown after the first one's, each giving its reason before its own,
+the first marked as a `restart`. Going back a few steps to find such an object a pose that keeps the way open (as
 models.placement.backtrack does for an object with no legal pose) placed a little more on the diagnosis plans, at a
 higher energy and a quarter more time: not kept. Measured in `app/bench/results/plan2place/reach-kept/` (README,
 Plan2Place).
@@ -32,6 +35,7 @@ from models.placement.reorder import Repair
 
 WALLS = "left out: each of its poses would cut a task object off from the robot"  # a left-out object's reason
 AGAIN = "solved again keeping every task object reachable"  # the reason shown on a kept episode's steps
+FIRST = ", with {} placed first"  # added to it where the objects left out for reach were placed first
 
 Steps = Callable[[list[str], StepObserver], Episode]  # (ids to place first, observer) -> steps made with `kept_step`
 
@@ -64,14 +68,25 @@ def better(new: Episode, old: Episode) -> bool:
 
 def solve_keeping(ep: Episode, repair: Repair, again: Steps, observer: StepObserver | None = None) -> Episode:
     """`ep` (repaired), or the episode solved again by `again` with every task object kept reachable and repaired, if
-    it is `better` (see the module)."""
+    it is `better`; where that one leaves objects out for reach, solved once more with them placed first (see the
+    module)."""
     if not out_of_reach(ep):
         return ep
-    steps: list[PlacementStep] = []
-    new = again([], steps.append)
-    repair(new, steps.append)
+    new, steps, why = *_solved(again, repair, []), AGAIN
+    if walls := [oid for oid, reason in new.failed.items() if reason == WALLS]:
+        third, third_steps = _solved(again, repair, walls)
+        if out_of_reach(third) <= out_of_reach(new) and Standing(third).energy < Standing(new).energy:
+            new, steps, why = third, third_steps, AGAIN + FIRST.format(", ".join(walls))
     if not better(new, ep):
         return ep
     for k, step in enumerate(steps if observer is not None else ()):
-        observer(dataclasses.replace(step, why=f"{AGAIN}; {step.why}" if step.why else AGAIN, restart=k == 0))
+        observer(dataclasses.replace(step, why=f"{why}; {step.why}" if step.why else why, restart=k == 0))
     return new
+
+
+def _solved(again: Steps, repair: Repair, first: list[str]) -> tuple[Episode, list[PlacementStep]]:
+    """A repaired reach-kept episode with the objects of `first` placed first, and its steps."""
+    steps: list[PlacementStep] = []
+    ep = again(first, steps.append)
+    repair(ep, steps.append)
+    return ep, steps
