@@ -183,3 +183,18 @@ def test_z3_interrupted_in_its_check_leaves_every_object_out_with_a_reason(monke
     layout = get_solver("z3").solve(p, seed=0)
     check(p, layout)
     assert not layout.placements and all("canceled" in u.reason for u in layout.unplaced)
+
+
+def test_z3_interrupted_while_its_model_is_read_leaves_every_object_out_with_a_reason(monkeypatch):
+    """The timer can fire just as `check()` returns; reading the model back then raises "canceled" too (seen on
+    `dense-00474` in the placement bench), which must not end the solve either."""
+    import z3
+
+    def canceled(self, *args, **kwargs):
+        raise z3.Z3Exception(b"canceled")
+
+    monkeypatch.setattr(z3.ModelRef, "eval", canceled)
+    p = plan(KITCHEN, KITCHEN_TEXT)
+    layout = get_solver("z3").solve(p, seed=0)
+    check(p, layout)
+    assert not layout.placements and all("canceled" in u.reason for u in layout.unplaced)

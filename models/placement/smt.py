@@ -78,12 +78,15 @@ class Z3Solver(ModelSolver):
             return float(x.as_fraction()) if z3.is_rational_value(x) else float(x.as_long())
 
         if m is not None:
-            for oid, o in ov.items():
-                if val(o.placed) > 0.5:
-                    k = max(range(4), key=lambda i: val(o.rot[i]))
-                    poses[oid] = (val(f"x[{oid}]"), val(f"z[{oid}]"), 90.0 * k)
-                else:
-                    reasons[oid] = "Z3's best model leaves it out: no position fits with the others"
-        else:
+            try:
+                for oid, o in ov.items():
+                    if val(o.placed) > 0.5:
+                        k = max(range(4), key=lambda i: val(o.rot[i]))
+                        poses[oid] = (val(f"x[{oid}]"), val(f"z[{oid}]"), 90.0 * k)
+                    else:
+                        reasons[oid] = "Z3's best model leaves it out: no position fits with the others"
+            except z3.Z3Exception as e:  # the timer fired as check() returned: reading the model is canceled too
+                poses, m, result = {}, None, e.value.decode() if isinstance(e.value, bytes) else str(e.value)
+        if m is None:
             reasons = {oid: f"Z3 found no model in {seconds:.2f} s ({result})" for oid in ov}
         return poses, reasons
