@@ -6,7 +6,6 @@ gets a 422 that names the field. OpenAPI docs are served at /docs.
 
 from __future__ import annotations
 
-import asyncio
 import json
 from typing import Annotated
 
@@ -147,22 +146,18 @@ def create_app(store: Store, pipeline: Pipeline | None = None) -> FastAPI:
         """`POST /place` step by step, as the placer makes each step: one JSON line per step (`h3ds place --steps`:
         pose, energy terms, reason, `restart`, and the `top` best candidates with their scores, Plan2Place's the
         policy's probabilities), then `{"layout": ...}`; a solver that fails ends the stream with `{"error": ...}`."""
-        async def lines():
-            loop, made = asyncio.get_running_loop(), asyncio.Queue()
-            observe = lambda step: loop.call_soon_threadsafe(made.put_nowait, step)  # noqa: E731 - from the solver
-            placing = loop.run_in_executor(None, lambda: pipeline.place(req.plan, req.seed, req.solver, observe,
-                                                                        req.keep or None))
-            placing.add_done_callback(lambda _: loop.call_soon_threadsafe(made.put_nowait, None))
+        stepping = pipeline.stepping(req.plan, req.seed, req.solver, keep=req.keep or None)
+
+        async def lines():  # the placer runs in Stepping's thread, each step handed to the server's event loop
             k = 0
-            while (step := await made.get()) is not None:
-                k += 1
-                yield json.dumps(step_record(step, k, top)) + "\n"
             try:
-                layout = placing.result()
+                async for step in stepping:
+                    k += 1
+                    yield json.dumps(step_record(step, k, top)) + "\n"
             except Exception as e:  # the status line is sent already: the stream's last line says what failed
                 yield json.dumps({"error": f"{type(e).__name__}: {e}"}) + "\n"
                 return
-            yield json.dumps({"layout": json.loads(dump(layout))}) + "\n"
+            yield json.dumps({"layout": json.loads(dump(stepping.layout))}) + "\n"
         return StreamingResponse(lines(), media_type=NDJSON)
 
     @app.post("/scenes", status_code=201)

@@ -64,7 +64,7 @@ class Z3Solver(ModelSolver):
         try:
             result = opt.check()
         except z3.Z3Exception as e:  # the timer's interrupt can reach check() as an exception ("canceled")
-            result = e.value.decode() if isinstance(e.value, bytes) else str(e.value)
+            result = _message(e)
         finally:
             stop.cancel()
         poses, reasons = {}, {}
@@ -86,7 +86,12 @@ class Z3Solver(ModelSolver):
                     else:
                         reasons[oid] = "Z3's best model leaves it out: no position fits with the others"
             except z3.Z3Exception as e:  # the timer fired as check() returned: reading the model is canceled too
-                poses, m, result = {}, None, e.value.decode() if isinstance(e.value, bytes) else str(e.value)
+                poses, m, result = {}, None, _message(e)
         if m is None:
             reasons = {oid: f"Z3 found no model in {seconds:.2f} s ({result})" for oid in ov}
         return poses, reasons
+
+
+def _message(e) -> str:
+    """A Z3Exception's message ("canceled" when the budget's timer interrupted Z3)."""
+    return e.value.decode() if isinstance(e.value, bytes) else str(e.value)

@@ -1,13 +1,14 @@
-"""Placement as an iterator of steps: `for step in Stepping(solver, plan, seed): ...` hands over each
-`PlacementStep` as the placer makes it (the solver runs in a worker thread and reports through its observer),
+"""Placement as an iterator of steps: `for step in Stepping(solver, plan, seed): ...` (or `async for`) hands over
+each `PlacementStep` as the placer makes it (the solver runs in a worker thread and reports through its observer),
 and `layout` holds the result once the iteration is over. Any solver works; Plan2Place's steps carry the
 policy's probability of every candidate (the floor heat-map), the repairs' steps their reason."""
 
 from __future__ import annotations
 
+import asyncio
 import queue
 import threading
-from collections.abc import Iterator
+from collections.abc import AsyncIterator, Callable, Iterator
 
 import numpy as np
 
@@ -27,23 +28,37 @@ class Stepping:
         """The steps in order; the solver's error, if any, is raised after the steps made before it. Leaving
         the loop early does not stop the solver: it finishes in its thread and `layout` is set then."""
         steps: queue.Queue = queue.Queue()
+        failure = self._start(steps.put)
+        while (step := steps.get()) is not _DONE:
+            yield step
+        if failure:
+            raise failure[0]
+
+    async def __aiter__(self) -> AsyncIterator[PlacementStep]:
+        """The same for an event loop (an HTTP server streaming the steps): each step is handed to the loop as it
+        is made, with no thread hop per step on the reading side."""
+        loop, steps = asyncio.get_running_loop(), asyncio.Queue()
+        failure = self._start(lambda step: loop.call_soon_threadsafe(steps.put_nowait, step))
+        while (step := await steps.get()) is not _DONE:
+            yield step
+        if failure:
+            raise failure[0]
+
+    def _start(self, put: Callable[[object], None]) -> list[BaseException]:
+        """Run the solver in a worker thread, `put`ting each step and then `_DONE`; the list it returns holds the
+        solver's error, if any, once `_DONE` is put."""
         failure: list[BaseException] = []
 
         def run() -> None:
             try:
-                self.layout = self.solver.solve(self.plan, seed=self.seed, observer=steps.put, fixed=self.fixed)
-            except BaseException as e:  # handed to the iterating thread
+                self.layout = self.solver.solve(self.plan, seed=self.seed, observer=put, fixed=self.fixed)
+            except BaseException as e:  # handed to the iterating side
                 failure.append(e)
             finally:
-                steps.put(_DONE)
+                put(_DONE)
 
-        worker = threading.Thread(target=run, daemon=True, name=f"stepping-{self.plan.id}")
-        worker.start()
-        while (step := steps.get()) is not _DONE:
-            yield step
-        worker.join()
-        if failure:
-            raise failure[0]
+        threading.Thread(target=run, daemon=True, name=f"stepping-{self.plan.id}").start()
+        return failure
 
 
 def step_record(step: PlacementStep, index: int, top: int = TOP) -> dict:
