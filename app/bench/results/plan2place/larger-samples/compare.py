@@ -12,15 +12,11 @@ import numpy as np
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parent))
-from status import HEAD, verdicts  # noqa: E402 (beside this directory)
+from status import HEAD, plans, verdicts  # noqa: E402 (beside this directory)
 from targets import RESULTS, SETS  # noqa: E402
 
 SAMPLES = {"seen": HERE.parent / "seen-100" / "sample-20", "human": HERE.parent / "human-all" / "sample-20",
            **{s: HERE / f"{s}-sample-20" for s in ("unseen_a", "unseen_b", "dense")}}
-
-
-def plans(rows: list[dict]) -> int:
-    return len({r["plan"] for r in rows if r["solver"] == "plan2place"})
 
 
 def main() -> str:
