@@ -100,6 +100,8 @@ def test_variants_alternate_run_by_run_and_the_value_they_change_is_put_back():
     assert [name for name, _ in itertools.groupby(called)] == ["a", "b", "a"]  # a solve may polish more than once
     assert all(r["set"] == "dense" and r["plan"] == "dense-00074" and r["pto_ms"] > 0 for r in rows)
     assert "(2 runs, 2 layouts unchanged)" in variant_rows(rows, "a", "b", metrics, placers=("greedy",))[0]
+    three = rows + [{**r, "solver": "c"} for r in rows if r["solver"] == "a"]  # a run of three variants: still 2 runs
+    assert "(2 runs, 2 layouts unchanged)" in variant_rows(three, "a", "c", metrics, placers=("greedy",))[0]
     off = alternating({"dense": (plans, range(1))}, repair, "polish", {"off": variant("off", False), "on": shipped},
                       metrics, placers=("greedy",))
     assert off[0]["layout"] != off[1]["layout"]  # the polish moves something on this plan: layouts tell it

@@ -116,7 +116,7 @@ def variant_rows(rows: list[dict], old: str, new: str, metrics, placers=("plan2p
     for label in dict.fromkeys(r["set"] for r in rows):
         for placer in placers:
             mine = [r for r in rows if r["set"] == label and r["placer"] == placer]
-            count = f"{len(mine) // 2} runs"
+            count = f"{len({(r['plan'], r['seed']) for r in mine})} runs"
             if all("layout" in r for r in mine):
                 layouts = {(r["plan"], r["seed"], r["solver"]): r["layout"] for r in mine}
                 same = sum(layouts[(p, s, new)] == layouts[(p, s, old)] for p, s, v in layouts if v == old)
