@@ -14,7 +14,7 @@ from fastapi.responses import StreamingResponse
 from pydantic import AfterValidator, BaseModel, Field, model_validator
 
 from app.bridge import bridge_for, mount
-from app.pipeline import Pipeline, dump, strangers
+from app.pipeline import Pipeline, dump, outside, strangers
 from models.exports.apartment import apartment_house
 from models.exports.stored import glb_of, house_of
 from models.language import InstructionError, check_instruction
@@ -63,6 +63,8 @@ class PlaceRequest(BaseModel):
     def _kept_are_its_objects(self) -> PlaceRequest:
         if unknown := strangers(self.plan, self.keep):
             raise ValueError(f"keep: not objects of plan {self.plan.id}: {', '.join(unknown)}")
+        if far := outside(self.plan, self.keep):
+            raise ValueError(f"keep: {far}")
         return self
 
 

@@ -72,11 +72,13 @@ def load_plan(path: str):
 
 def load_kept(path: str, plan) -> dict[str, tuple[float, float, float]]:
     """The poses of a layout file's placements, to keep when placing `plan` (`h3ds place --keep`)."""
-    from app.pipeline import pose_of, strangers
+    from app.pipeline import outside, pose_of, strangers
     from models.values import Layout
     keep = {p.id: pose_of(p) for p in _load_value(path, Layout, "layout").placements}
     if unknown := strangers(plan, keep):
         raise BadInput(f"{path}: not objects of plan {plan.id}: {', '.join(unknown)}")
+    if far := outside(plan, keep):
+        raise BadInput(f"{path}: {far}")
     return keep
 
 

@@ -128,4 +128,8 @@ def test_place_keeps_the_given_poses_and_names_a_stranger(db_url, solver):
     assert len(layout["placements"]) == len(gen["layout"]["placements"])
     bad = api.post("/place", json={"plan": gen["plan"], "keep": {"sofa-9": [1, 1, 0]}})
     assert bad.status_code == 422 and "not objects of plan scene-0: sofa-9" in bad.text
+    away = api.post("/place", json={"plan": gen["plan"], "keep": {first["id"]: [-1.5, 1, 0]}})  # x and z swapped, say
+    room = gen["plan"]["room"]
+    assert away.status_code == 422 and \
+        f"outside the {room['width']} x {room['depth']} m room of plan scene-0: {first['id']} at (-1.5, 1.0)" in away.text
     assert api.post("/place", json={"plan": gen["plan"], "solver": "best"}).status_code == 422

@@ -79,6 +79,10 @@ def test_place_keeps_the_poses_of_a_hand_edited_layout(tmp_path, capsys):
     (tmp_path / "stranger.json").write_text(json.dumps(stranger))
     code, _, err = run(["place", str(tmp_path / "g" / "plan.json"), "--keep", str(tmp_path / "stranger.json")], capsys)
     assert code == 2 and "not objects of plan scene-0: sofa-9" in err
+    away = {**layout, "placements": [{**kept[0], "z": -3.0}]}  # a pose outside the room: an error, not an object outside
+    (tmp_path / "away.json").write_text(json.dumps(away))
+    code, _, err = run(["place", str(tmp_path / "g" / "plan.json"), "--keep", str(tmp_path / "away.json")], capsys)
+    assert code == 2 and f"room of plan scene-0: {kept[0]['id']} at ({kept[0]['x']}, -3.0)" in err
     (tmp_path / "bad.json").write_text('{"placements": 3}')
     code, _, err = run(["place", str(tmp_path / "g" / "plan.json"), "--keep", str(tmp_path / "bad.json")], capsys)
     assert code == 2 and "bad.json" in err and err.count("\n") == 1
