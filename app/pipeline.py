@@ -147,9 +147,9 @@ def strangers(plan: ConstraintPlan, keep: Fixed) -> list[str]:
 
 
 def outside(plan: ConstraintPlan, keep: Fixed) -> str:
-    """"" if every kept pose's centre is inside `plan`'s room, else what is wrong, naming each pose outside: a kept
-    pose is placed as it is, so one outside the room would be an object left outside (most likely a unit or an
-    axis swapped)."""
+    """What is wrong with `keep` for `plan`, naming each pose whose centre is outside its room (empty if none): a kept
+    pose is placed as it is, so one outside the room would leave its object outside (most likely a unit or an axis
+    swapped)."""
     w, d = plan.room.width, plan.room.depth
     far = [f"{i} at ({x}, {z})" for i, (x, z, _) in keep.items() if not (0 <= x <= w and 0 <= z <= d)]
     return f"poses outside the {w} x {d} m room of plan {plan.id}: {', '.join(far)}" if far else ""
