@@ -80,5 +80,5 @@ def test_the_oob_cell_counts_left_out_objects_where_another_solver_placed_all(st
     def oob_cell(dfs_cnt: float) -> str:
         return status.verdicts(runs({"cnt": 0.8, "oob": 0.2}, {"cnt": dfs_cnt}), np.random.default_rng(0))[5]
 
-    assert oob_cell(1.0).startswith("missed") and "20.00 where a baseline placed all" in oob_cell(1.0)
-    assert oob_cell(0.9).startswith("missed") and "0.00 where a baseline placed all" in oob_cell(0.9)
+    assert oob_cell(1.0).startswith("missed") and ", 20.00 where a baseline placed all" in oob_cell(1.0)
+    assert oob_cell(0.9).startswith("missed") and ", 0.00 where a baseline placed all" in oob_cell(0.9)  # not 20.00
