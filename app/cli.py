@@ -191,7 +191,7 @@ def cmd_demo(args) -> int:
     gen = Pipeline().generate("Put a chilled bread on the counter", "kitchen", seed=0)
     write_generation(gen, out)
     print(f"Demo scene for 'Put a chilled bread on the counter' written to {out.resolve()}/")
-    print(f"  open {out / 'scene.glb'} in Blender or https-free three.js viewers; "
+    print(f"  open {out / 'scene.glb'} in Blender or any glTF viewer; "
           f"load {out / 'house.json'} with AI2-THOR's Controller(scene=house)")
     return 0
 
@@ -346,7 +346,10 @@ def cmd_train_placement(args) -> int:
 
 def cmd_bench(args) -> int:
     from app.bench import run_benchmark
-    return run_benchmark(args.what, args)
+    try:
+        return run_benchmark(args.what, args)
+    except FileNotFoundError as e:  # a path given on the command line (a run, an adapter)
+        raise BadInput(f"{e.filename}: {e.strerror}") from e
 
 
 def _parser_options(p: argparse.ArgumentParser) -> None:
@@ -422,11 +425,11 @@ def build_parser() -> argparse.ArgumentParser:
     e.add_argument("--out", default=None, help="file to write (default: stdout)")
     e.set_defaults(run=cmd_feedback_export)
 
-    p = sub.add_parser("demo", help="generate the demo scene (what `make run` does until the studio lands)")
+    p = sub.add_parser("demo", help="generate the demo scene (bread on the counter) into a folder")
     p.add_argument("--out", default="out/demo", metavar="DIR")
     p.set_defaults(run=cmd_demo)
 
-    p = sub.add_parser("bench", help="benchmarks that print figures: parser, generate, placement, energy")
+    p = sub.add_parser("bench", help="benchmarks that print figures (placement, plan2place, language, studio, ...)")
     p.add_argument("what", choices=["parser", "generate", "placement", "energy", "studio", "language", "vrpose",
                                           "plan2place", "bridge", "batch", "steps"])
     p.add_argument("--n", type=int, default=30, help="instructions (generate) or plans (placement) to run")
@@ -437,7 +440,7 @@ def build_parser() -> argparse.ArgumentParser:
                    "instruction (default: drawn from each task)")
     p.add_argument("--dataset", default="seen", choices=["seen", "unseen_a", "unseen_b", "dense", "human", "varied"],
                    help="placement, steps: which constraint dataset (plan2place only: varied, the checkpoint-choice plans)")
-    p.add_argument("--solvers", default=None, help="comma-separated solver names; placement: default dfs,milp,z3; "
+    p.add_argument("--solvers", default=None, help="comma-separated solver names; placement: default dfs,milp,z3,greedy,plan2place; "
                    "generate: default dfs and the default solver")
     p.add_argument("--seeds", type=int, default=5, help="placement, steps: seeds per plan")
     p.add_argument("--budget", type=float, default=None, help="placement: time budget per plan (s)")
@@ -454,7 +457,7 @@ def build_parser() -> argparse.ArgumentParser:
     _executor_options(p, "placement: worker processes (default: this process)")
     p.set_defaults(run=cmd_bench)
 
-    p = sub.add_parser("train", help="train a model (seeded, resumable, loss curves): language")
+    p = sub.add_parser("train", help="train a model (seeded, resumable, loss curves): language, roles, placement")
     train = p.add_subparsers(dest="what", required=True, parser_class=Parser)
     t = train.add_parser("language", help="LoRA fine-tuning of f_theta1 (instruction -> compact task graph)")
     t.add_argument("--out", default="runs/language", metavar="DIR", help="checkpoints, loss.csv, loss.png, adapter/")

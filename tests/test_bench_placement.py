@@ -51,6 +51,9 @@ def test_a_paired_lead_is_called_only_when_its_interval_is_clear_of_zero():
     noisy = {"p": [-1.0], "q": [1.2], "r": [-0.1]}
     assert not cell(*interval(noisy, np.random.default_rng(0)), higher_is_better=False).startswith(("**", "_"))
     assert np.isnan(interval({}, np.random.default_rng(0))[0])  # nothing to compare earns no lead
+    tiny = -2e-17  # two float sums of one layout in another order: shown -0.000, not a lead
+    assert not cell(tiny, tiny, tiny, higher_is_better=False, digits=3).startswith(("**", "_"))
+    assert cell(-0.001, -0.001, -0.001, higher_is_better=False, digits=3).startswith("**")
 
 
 def test_pto_medians_come_from_the_stored_runs(tmp_path):

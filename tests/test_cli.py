@@ -139,6 +139,21 @@ def test_help_says_what_each_solver_does(command):
     assert summaries()["plan2place_all_objects"] in proc.stdout
 
 
+def test_stdout_carries_json_alone_with_the_milp_solver(tmp_path, capsys):
+    """HiGHS prints a banner on the C-level stdout at a process's first model; `h3ds place` must keep stdout the
+    layout (or the steps' JSON lines) all the same, in a real process where MILP makes its first model."""
+    run(["generate", "Put a mug in the sink", "--room-type", "kitchen", "--parser", "rules", "--out", str(tmp_path)],
+        capsys)
+    plan = str(tmp_path / "plan.json")
+    proc = subprocess.run(H3DS + ["place", plan, "--solver", "milp"], capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 0 and json.loads(proc.stdout)["solver"] == "milp"
+    proc = subprocess.run(H3DS + ["place", plan, "--solver", "milp", "--steps", "-", "--out", str(tmp_path / "l.json")],
+                          capture_output=True, text=True, timeout=120)
+    steps = [json.loads(line) for line in proc.stdout.splitlines()]
+    assert proc.returncode == 0 and steps and all("object" in s for s in steps)
+    assert "HiGHS" in proc.stderr  # the banner went to stderr, not away
+
+
 def test_binary_instruction_through_the_real_process():
     proc = subprocess.run(H3DS + ["parse", "\x7f\x01\x02"], capture_output=True, text=True, timeout=60)
     assert proc.returncode == 2 and "Traceback" not in proc.stderr and proc.stderr.count("\n") == 1

@@ -36,9 +36,11 @@ def interval(diffs: dict[str, list[float]], rng: np.random.Generator) -> tuple[f
 
 
 def cell(mean: float, lo: float, hi: float, higher_is_better: bool, digits: int = 2) -> str:
-    """"+0.12 [+0.03, +0.20]", bold when a is better with the interval clear of 0, italic when worse."""
+    """"+0.12 [+0.03, +0.20]", bold when a is better with the interval clear of 0, italic when worse; clear as
+    shown: a bound that rounds to 0 at `digits` (a float sum's last bit) is not clear of it."""
     text = f"{mean:+.{digits}f} [{lo:+.{digits}f}, {hi:+.{digits}f}]"
-    better, worse = (lo > 0, hi < 0) if higher_is_better else (hi < 0, lo > 0)
+    shown = 0.5 * 10.0 ** -digits
+    better, worse = (lo >= shown, hi <= -shown) if higher_is_better else (hi <= -shown, lo >= shown)
     return f"**{text}**" if better else f"_{text}_" if worse else text
 
 

@@ -1,6 +1,6 @@
 """The paper's placement table: every solver on a constraint dataset, mean +- std over seeds.
 
-    h3ds bench placement --dataset seen --solvers dfs,milp,z3 --n 40 --seeds 5
+    h3ds bench placement --dataset seen --n 40 --seeds 5   (default: DFS, MILP, Z3, greedy and Plan2Place)
 
 For each seed and solver, every plan is solved and scored (models.metrics); a seed's figure is the
 mean over plans, and the table shows the mean and standard deviation of those over seeds. Raw
@@ -29,6 +29,7 @@ from models.metrics import scene_metrics
 from models.placement import PlacementProblem, get_solver
 from models.placement.problem import PER_OBJECT_BUDGET_S
 
+DEFAULT_SOLVERS = "dfs,milp,z3,greedy,plan2place"  # issue 8's full table: the baselines, the yardstick, the agent
 COLUMNS = [("cnt", "CNT", 100), ("sr", "SR", 100), ("nav", "NAV", 100), ("key_nav", "Key_NAV", 100),
            ("oob", "OOB", 100), ("pto", "PTO (s)", 1), ("collisions", "collisions", 1),
            ("constraint_satisfaction", "constraints", 100), ("realism", "realism", 100), ("energy", "energy", 1)]
@@ -171,7 +172,7 @@ def plots(rows: list[dict], solvers: list[str], out: Path, dataset: str) -> list
 
 
 def main(args) -> int:
-    solvers = [s.strip() for s in (args.solvers or "dfs,milp,z3").split(",") if s.strip()]
+    solvers = [s.strip() for s in (args.solvers or DEFAULT_SOLVERS).split(",") if s.strip()]
     for s in solvers:
         get_solver(s)  # unknown names fail here, before any work
     out = Path(args.out or f"out/bench/placement-{args.dataset}")

@@ -32,6 +32,14 @@ METRICS = [("energy", "energy", 1), ("cnt", "CNT", 100), ("sr", "SR", 100), ("ke
            ("collisions", "collisions", 1)]
 
 
+def shipped_path() -> str:
+    """The shipped weights' file, wherever the command runs from."""
+    from importlib import resources
+
+    from models.placement.plan2place.policy import SHIPPED
+    return str(resources.files("models").joinpath(SHIPPED))
+
+
 def solver_for(run: str, repair: bool = True):
     from models.placement.plan2place.agent import fast_policy, load_run
     from models.placement.plan2place.solver import Plan2PlaceSolver
@@ -88,7 +96,10 @@ def main(args) -> int:
         plans = [varied_plan(0, e, "validation") for e in range(args.n)]
     else:
         plans = [r.plan for r in pick_records(args.dataset, args.n)]
-    runs = [r for r in (args.runs or "models/weights/plan2place/plan2place.npz").split(",") if r]
+    runs = [r for r in (args.runs or shipped_path()).split(",") if r]
+    for run in runs:
+        if not Path(run).exists():
+            raise FileNotFoundError(2, "no such run (exported weights, checkpoint or training folder)", run)
     from models.placement.plan2place.solver import untrained_solver
     baselines = [get_solver("greedy"), untrained_solver()]
     trained = [solver_for(r) for r in runs]
