@@ -13,13 +13,12 @@ from pathlib import Path
 
 from pydantic import ValidationError
 
-from models.language import InstructionError
+from models.errors import InputError
 from models.language.combined import DEFAULT_POLICY, POLICIES, make_parser
-from models.placement import DEFAULT_SOLVER, SOLVERS, UnknownSolver
+from models.placement import DEFAULT_SOLVER, SOLVERS
 from models.placement.base import summaries
-from models.planning.apartment_planner import ApartmentError, is_apartment, parse_rooms
-from models.planning.floorplan import FloorplanError
-from models.world import ROOM_TYPES, UnknownRoomType
+from models.planning.apartment_planner import is_apartment, parse_rooms
+from models.world import ROOM_TYPES
 
 EXAMPLES = """examples:
   h3ds parse "Put a chilled bread on the counter" --room-type kitchen
@@ -109,7 +108,7 @@ def cmd_parse(args) -> int:
                     item = json.loads(line)
                     graph = pipeline.parse(item["instruction"], item.get("room_type"))
                     row = {"id": item.get("id"), **json.loads(dump(graph))}
-                except (json.JSONDecodeError, KeyError, TypeError, InstructionError, UnknownRoomType) as e:
+                except (json.JSONDecodeError, KeyError, TypeError, InputError) as e:
                     row = {"id": item.get("id") if isinstance(item, dict) else None, "error": f"line {n}: {e}"}
                 out.write(json.dumps(row) + "\n")
         finally:
@@ -556,7 +555,7 @@ def main(argv: list[str] | None = None) -> int:
     try:
         args = build_parser().parse_args(argv)
         return args.run(args)
-    except (BadInput, InstructionError, UnknownRoomType, UnknownSolver, ApartmentError, FloorplanError) as e:
+    except (BadInput, InputError) as e:
         print(f"h3ds: error: {e}", file=sys.stderr)
         return 2
     except ValidationError as e:

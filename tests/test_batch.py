@@ -16,7 +16,7 @@ from types import SimpleNamespace
 import psutil
 import pytest
 
-from app.batch.executors import InProcess, LocalProcesses, RayExecutor
+from app.batch.executors import InProcess, LocalProcesses, RayExecutor, guarded
 from app.batch.scenes import MARKER, SCENES, BatchError, complete, read_tasks, run_batch
 from app.batch.studio import studio_name
 from app.pipeline import generation_of
@@ -65,7 +65,7 @@ def test_bad_lines_are_recorded_and_the_batch_goes_on(tmp_path):
     assert "line 3: not a JSON object" in errors[0] and "line 4: room_type" in errors[1] and "spaceship" in errors[1]
     assert "line 5: solver" in errors[2] and "unknown solver 'nope'" in errors[2]
     assert "room_type" in errors[3] and "cannot name a folder" in errors[4] and "sead" in errors[5]
-    assert errors[6].startswith("InstructionError: no object to pick up") and rows[8]["key"] == "line-000009"
+    assert errors[6].startswith("no object to pick up") and rows[8]["key"] == "line-000009"  # by its message alone
     assert sorted(p.name for p in (out / SCENES).iterdir()) == ["line-000001", "line-000002"]
     ok = rows[0]
     assert ok["placed"] + ok["unplaced"] == ok["n_objects"] > 0 and ok["energy"] is not None
@@ -74,6 +74,15 @@ def test_bad_lines_are_recorded_and_the_batch_goes_on(tmp_path):
     import datasets
     table = datasets.load_dataset("json", data_files=str(out / "results.jsonl"), split="train")
     assert table.num_rows == 9 and table["status"].count("error") == 7
+
+
+def test_an_input_error_reads_as_its_message_a_fault_of_ours_says_where():
+    from models.world import normalise_room_type
+
+    ok, error = guarded(normalise_room_type, "moon")
+    assert not ok and error.startswith("unknown room type 'moon'") and "(at " not in error
+    ok, error = guarded(lambda items: items[1], [])
+    assert not ok and error.startswith("IndexError: list index out of range (at test_batch.py:")
 
 
 def test_input_that_cannot_start_a_batch_is_refused(tmp_path):

@@ -20,6 +20,8 @@ from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
 from typing import Any, Protocol
 
+from models.errors import InputError
+
 MAX_RETRIES = 2  # extra attempts for an item whose worker process died under it (Ray's default is 3)
 
 
@@ -44,7 +46,10 @@ class Executor(Protocol):
 
 
 def describe(e: BaseException) -> str:
-    """An exception as one line: its type, message and the place in our code it came from."""
+    """An exception as one line: a user's input error (models.errors) by its message alone, anything else by its
+    type, message and the place in our code it came from."""
+    if isinstance(e, InputError):
+        return str(e)
     frames = [f for f in traceback.extract_tb(e.__traceback__) if "/site-packages/" not in f.filename]
     where = f" (at {os.path.basename(frames[-1].filename)}:{frames[-1].lineno})" if frames else ""
     return f"{type(e).__name__}: {e}{where}"

@@ -4,12 +4,13 @@ from __future__ import annotations
 
 from typing import Protocol
 
+from models.errors import InputError
 from models.values import TaskGraph
 
 MAX_INSTRUCTION_CHARS = 1000
 
 
-class InstructionError(ValueError):
+class InstructionError(InputError):
     """An instruction that cannot be parsed; the message names the problem in one line."""
 
 

@@ -8,6 +8,7 @@ from typing import Protocol
 
 import numpy as np
 
+from models.errors import InputError
 from models.values import ConstraintPlan, Layout
 
 
@@ -40,7 +41,7 @@ class Solver(Protocol):
         """Place the plan's objects; `fixed` poses (object id -> x, z, rotation) are kept as they are."""
 
 
-class UnknownSolver(ValueError):
+class UnknownSolver(InputError):
     def __init__(self, name: str):
         super().__init__(f"unknown solver {name!r}; available: {', '.join(sorted(SOLVERS))}")
 

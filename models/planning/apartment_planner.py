@@ -13,6 +13,7 @@ from __future__ import annotations
 import random
 import re
 
+from models.errors import InputError
 from models.planning.floorplan import FloorplanMaker, SlicingFloorplan
 from models.planning.room_planner import RoomPlanner
 from models.values import RoomPlan, TaskGraph
@@ -24,7 +25,7 @@ HOME_BONUS = 0.25  # the task's own room type wins when another type is at most 
 FILL_ORDER = ("bathroom", "bedroom", "kitchen", "dining room", "office", "bedroom")
 
 
-class ApartmentError(ValueError):
+class ApartmentError(InputError):
     """A room list or task that cannot make an apartment (one line, for the CLI and the API)."""
 
 

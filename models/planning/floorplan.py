@@ -19,6 +19,7 @@ import random
 from dataclasses import dataclass
 from typing import Protocol
 
+from models.errors import InputError
 from models.planning.shell import CORNER_MARGIN, WINDOW_MAX_HEIGHT, WINDOW_SILL, free_spans, snap
 from models.values import Opening, Provenance, Room
 from models.values.apartment import OUTSIDE, Doorway, Floorplan, HouseRoom
@@ -33,7 +34,7 @@ ATTEMPTS = 40
 EPS = 1e-6
 
 
-class FloorplanError(ValueError):
+class FloorplanError(InputError):
     """The rooms cannot be laid out as asked (one line, for the CLI and the API)."""
 
 

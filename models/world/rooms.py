@@ -5,11 +5,13 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass
 
+from models.errors import InputError
+
 ROOM_TYPES: tuple[str, ...] = ("kitchen", "living room", "bedroom", "bathroom", "dining room", "office",
                                "laundry room", "garage", "hallway")
 
 
-class UnknownRoomType(ValueError):
+class UnknownRoomType(InputError):
     def __init__(self, given: str):
         super().__init__(f"unknown room type {given!r}; expected one of: {', '.join(ROOM_TYPES)}")
 
