@@ -41,6 +41,12 @@ def standing(steps: Sequence[PlacementStep], shown: int, room_of: RoomOf = one_r
             for oid, k in _latest(steps, shown, room_of).items() if steps[k].x is not None}
 
 
+def to_come(steps: Sequence[PlacementStep], shown: int, room_of: RoomOf = one_room) -> set[str]:
+    """The objects a later step places that do not stand after the first `shown` steps: the placer has still to
+    place them, so the energy of the room then leaves them pending (not charged as left out)."""
+    return {s.object_id for s in steps[shown:]} - set(standing(steps, shown, room_of))
+
+
 def repeated(steps: Sequence[PlacementStep], shown: int, room_of: RoomOf = one_room) -> bool:
     """Was the object of step `shown` (1-based) placed before in the same solve of its room (a repair's step)?"""
     step = steps[shown - 1]

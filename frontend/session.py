@@ -28,7 +28,7 @@ from frontend.checks import Finding, run_checks, summary
 from frontend.constraints_panel import ConstraintsPanel
 from frontend.graph_image import render as render_graph
 from frontend.history import History
-from frontend.replay import RoomOf, one_room, placements_at, room_at
+from frontend.replay import RoomOf, one_room, placements_at, room_at, to_come
 from frontend.scenes_panel import ScenesPanel
 from frontend.state import State, Values
 from frontend.view import SceneView, world
@@ -43,7 +43,9 @@ from studio_db import Store
 from studio_db.store import Edit
 
 ROLE_CHOICES = ("key", "anchor", "inference", "key + anchor", "anchor + inference")
-ENERGY_TERMS = ("rel", "collision", "oob", "nav", "aff", "total")
+ENERGY_TERMS = ("rel", "collision", "oob", "nav", "aff", "missing", "total")  # the plot's series
+ENERGY_DECIMALS = 4  # the plot's resolution
+ENERGY_PLOT_TOP = 1.0  # the plot's y axis shows at least 0..1 (a layout of energy 0 draws flat, not magnified)
 DEFAULT_INSTRUCTION = "Put a chilled bread on the counter"
 LIVE_RESCORE_S = 0.3
 PROGRESS_S = 0.2  # the progress line is updated at most this often while placing
@@ -140,7 +142,7 @@ class StudioSession:
                 data=(np.zeros(1), *[np.zeros(1) for _ in ENERGY_TERMS]),
                 series=({"label": "step"}, *[{"label": t, "stroke": c} for t, c in
                                               zip(ENERGY_TERMS, ("#e07b39", "#c0392b", "#8e44ad", "#2980b9",
-                                                                 "#27ae60", "#111111"))]),
+                                                                 "#27ae60", "#7f8c8d", "#111111"))]),
                 title="Energy terms per step", aspect=1.6, scales={"x": {"time": False}})
 
         with tabs.add_tab("Constraints"):
@@ -433,14 +435,18 @@ class StudioSession:
             self.view.heat_map(None)
 
     def _energy_curve(self, gen: Generation, steps: list[PlacementStep]) -> None:
-        """The paper's energy terms after each placement step (exact energy) of the room as the animation shows it
-        then (frontend.replay), drawn when ready."""
-        rows = [layout_energy(gen.plan, placements_at(gen.layout.placements, steps, k)).as_dict()
-                for k in range(1, len(steps) + 1)]
+        """The energy terms after each placement step (exact energy) of the room as the animation shows it then
+        (frontend.replay), the objects still to come pending, as the placer's own step sees them; drawn when ready."""
+        rows = [layout_energy(gen.plan, placements_at(gen.layout.placements, steps, k),
+                              pending=to_come(steps, k)).as_dict() for k in range(1, len(steps) + 1)]
         if self.state.gen is not gen or not rows:
             return
         xs = np.arange(1, len(rows) + 1, dtype=float)
-        self.energy_plot.data = (xs, *[np.array([r[t] for r in rows]) for t in ENERGY_TERMS])
+        # rounded: a term's float noise (1e-17 where it is 0) would otherwise set the plot's scale
+        series = [np.round([r[t] for r in rows], ENERGY_DECIMALS) for t in ENERGY_TERMS]
+        top = max(ENERGY_PLOT_TOP, 1.1 * float(np.max(series)))
+        self.energy_plot.scales = {"x": {"time": False}, "y": {"range": (0.0, top)}}
+        self.energy_plot.data = (xs, *series)
 
     # ---- panels -----------------------------------------------------------------------------------
 

@@ -195,6 +195,10 @@ def test_the_energy_plot_follows_the_room_the_animation_shows():
     assert poses[1] == {"table-0": (2.0, 2.0, 90.0), "chair-0": (3.0, 2.0, 0.0)}
     assert poses[2] == {"table-0": (1.0, 1.0, 0.0)}  # the restart took the chair up
     assert poses[3] == {p.id: (p.x, p.z, p.rotation) for p in final}
+    from frontend.replay import to_come
+    assert [to_come(steps, k) for k in range(5)] == [{"table-0", "chair-0"}, {"chair-0"}, set(), {"chair-0"}, set()]
+    left_out = [_step("table-0", (2.0, 2.0, 90.0)), _step("chair-0", None)]  # the chair found no room
+    assert to_come(left_out, 1) == {"chair-0"} and to_come(left_out, 2) == set()  # then it is charged as missing
 
 
 def test_the_progress_line_says_what_the_placer_is_doing():
