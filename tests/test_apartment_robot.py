@@ -56,8 +56,8 @@ def test_the_plan_walks_through_a_door_to_the_other_room_and_meets_the_goal(two_
 
 def test_acting_on_an_object_in_another_room_fails_the_check(two_rooms):
     apartment, house, plan = two_rooms
-    to_lamp = next(s.index for s in plan.steps if s.action["action"] == "TeleportFull"
-                   and s.target.startswith("ShelvingUnit"))
+    toggle = next(k for k, s in enumerate(plan.steps) if s.action["action"] == "ToggleObjectOn")
+    to_lamp = next(s.index for s in reversed(plan.steps[:toggle]) if s.action["action"] == "TeleportFull")
     steps = [s.model_copy(update={"index": i}) for i, s in enumerate(s for s in plan.steps if s.index != to_lamp)]
     check = check_plan(house, plan.model_copy(update={"steps": steps}), apartment.task_graph)
     assert not check.ok and "go through the doors" in check.failure and "ToggleObjectOn" in check.failure

@@ -76,3 +76,29 @@ def test_the_room_planner_names_a_structure_type_in_a_hand_edited_graph():
     with pytest.raises(ValueError, match=r"structure as an object \(Floor\)"):
         RoomPlanner().plan(edited)
     assert RoomPlanner().plan(graph).objects  # the graph as parsed still plans
+
+
+def test_every_planned_room_has_the_furniture_that_makes_it_its_type():
+    """A bedroom has a bed, a kitchen a fridge and a counter... in every seed, however crowded; each such type stands
+    in every iTHOR room of the type (the authored prior's 1.0 for the others). The stored datasets opt out."""
+    from models.planning import RoomPlanner
+    from models.planning.room_planner import RoomPlannerSettings
+    from models.values import TaskGraph
+    from models.world.rooms import AUTHORED_ROOM_PRIORS, ROOM_SPECS
+
+    cat = catalogue()
+    crowded = RoomPlanner(RoomPlannerSettings(min_context=14, max_context=16, size_scale=0.6))
+    legacy = RoomPlanner(RoomPlannerSettings(defining=False))
+    for room, spec in ROOM_SPECS.items():
+        for t in spec.defining:
+            prior = cat.room_presence(t, room) if spec.ithor else AUTHORED_ROOM_PRIORS[room][t]
+            assert prior == 1.0 and cat.is_floor_object(t), (room, t)
+        graph = TaskGraph.model_validate({"instruction": "Pick up the apple", "room_type": room, "task_type":
+                                          "pick_and_place_simple", "objects": [{"type": "Apple", "roles": ["key"]}]})
+        for seed in range(12):
+            for planner in (RoomPlanner(), crowded):
+                types = [o.type for o in planner.plan(graph, seed).objects]
+                assert set(spec.defining) <= set(types), (room, seed, types)
+        if spec.defining:  # before the rule, some rooms lacked it (40 % of bedrooms had no bed)
+            assert any(not set(spec.defining) <= {o.type for o in legacy.plan(graph, seed).objects}
+                       for seed in range(40)), room

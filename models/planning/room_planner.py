@@ -38,6 +38,7 @@ class RoomPlannerSettings:
     size_scale: float = 1.0
     surface_items: float = 0.5  # expected context items per open surface
     group_chance: float = 0.8
+    defining: bool = True  # every room gets its type's defining furniture (rooms.RoomSpec.defining), kept to the end
 
 
 def plan_role(roles: list[str]) -> str:
@@ -88,7 +89,12 @@ class RoomPlanner:
                 pending.append((task_obj.type, role))
         anchor_ids = {o.id for o in floor if o.role == "anchor"}
 
-        # 2. context furniture from the room priors, then the groups they anchor
+        # 2. the furniture that makes the room its type (a bedroom's bed) unless the task brought it, then context
+        # furniture from the room priors, then the groups they anchor
+        keep = set()
+        if self.settings.defining:
+            brought = {o.type for o in floor}
+            keep = {add_floor(t, "context").id for t in ROOM_SPECS[room_type].defining if t not in brought}
         for type_name in self._sample_context(room_type, rng, {o.type for o in floor}):
             add_floor(type_name, "context")
         for root in list(floor):
@@ -108,7 +114,7 @@ class RoomPlanner:
                 if child:
                     surface.append(self._surface(child, "context", obj.id, new_id, rng))
 
-        floor = self._fit_floor(floor, surface, room_type)
+        floor = self._fit_floor(floor, surface, room_type, keep)
         min_area = sum(o.size.x * o.size.z for o in floor) / FLOOR_FILL_LIMIT
         room = make_room(room_type, rng, min_area=min_area, size_scale=self.settings.size_scale)
         kept = {o.id for o in floor}
@@ -192,11 +198,13 @@ class RoomPlanner:
         return SurfaceObject(id=new_id(type_name), type=type_name, role=role, parent=parent,
                              size=Size(x=asset.size[0], y=asset.size[1], z=asset.size[2]))
 
-    def _fit_floor(self, floor: list[PlanObject], surface: list[SurfaceObject], room_type: str) -> list[PlanObject]:
-        """Drop context furniture (least needed first) while it would cover too much of the largest room."""
+    def _fit_floor(self, floor: list[PlanObject], surface: list[SurfaceObject], room_type: str,
+                   keep: set[str]) -> list[PlanObject]:
+        """Drop context furniture (the largest first; never `keep`) while it would cover too much of the largest
+        room."""
         spec = ROOM_SPECS[room_type]
         largest = (spec.max_side * self.settings.size_scale) ** 2
-        needed = {s.parent for s in surface if s.role != "context"}
+        needed = keep | {s.parent for s in surface if s.role != "context"}
         floor = list(floor)
         while sum(o.size.x * o.size.z for o in floor) > FLOOR_FILL_LIMIT * largest:
             droppable = [o for o in floor if o.role == "context" and o.id not in needed]

@@ -27,22 +27,27 @@ def normalise_room_type(name: str) -> str:
 
 @dataclass(frozen=True)
 class RoomSpec:
-    """Floor size range (metres) and the names ProcTHOR uses for a room type."""
+    """Floor size range (metres), the names ProcTHOR uses for a room type, and the furniture that makes a room
+    of the type what it is."""
 
     min_side: float
     max_side: float
     procthor_type: str  # ProcTHOR's roomType (it knows only four)
     ithor: str | None  # the iTHOR room type whose object statistics apply, if any
+    # floor types every planned room of the type gets (models.planning.room_planner): each stands in every one of
+    # the iTHOR rooms of the type (for the others: the authored prior's 1.0 below), and names what the room is for;
+    # not the garbage can or the floor lamp, which also stand in every iTHOR room of some types
+    defining: tuple[str, ...] = ()
 
 
 ROOM_SPECS: dict[str, RoomSpec] = {
-    "kitchen": RoomSpec(3.5, 5.5, "Kitchen", "kitchen"),
-    "living room": RoomSpec(4.0, 6.5, "LivingRoom", "living room"),
-    "bedroom": RoomSpec(3.5, 5.5, "Bedroom", "bedroom"),
-    "bathroom": RoomSpec(2.5, 4.0, "Bathroom", "bathroom"),
-    "dining room": RoomSpec(3.5, 5.5, "LivingRoom", None),
-    "office": RoomSpec(3.0, 5.0, "LivingRoom", None),
-    "laundry room": RoomSpec(2.5, 4.0, "Bathroom", None),
+    "kitchen": RoomSpec(3.5, 5.5, "Kitchen", "kitchen", ("Fridge", "CounterTop")),
+    "living room": RoomSpec(4.0, 6.5, "LivingRoom", "living room", ("Sofa",)),
+    "bedroom": RoomSpec(3.5, 5.5, "Bedroom", "bedroom", ("Bed",)),
+    "bathroom": RoomSpec(2.5, 4.0, "Bathroom", "bathroom", ("Toilet", "Sink")),
+    "dining room": RoomSpec(3.5, 5.5, "LivingRoom", None, ("DiningTable",)),
+    "office": RoomSpec(3.0, 5.0, "LivingRoom", None, ("Desk",)),
+    "laundry room": RoomSpec(2.5, 4.0, "Bathroom", None, ("WashingMachine",)),
     "garage": RoomSpec(4.5, 7.0, "LivingRoom", None),
     "hallway": RoomSpec(2.0, 6.0, "LivingRoom", None),
 }
