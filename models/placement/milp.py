@@ -18,6 +18,7 @@ import os
 import sys
 import threading
 import time
+from functools import cache
 
 import highspy
 import numpy as np
@@ -30,30 +31,23 @@ from models.values import ConstraintPlan, Layout
 FEASIBLE = 2  # HiGHS primal_solution_status: 0 none, 1 infeasible, 2 feasible
 
 INF = highspy.kHighsInf
+_REDIRECT = threading.Lock()  # one redirection of the process's stdout at a time (`_first_model_quietly`)
 
 
-class _Banner:
+@cache
+def _first_model_quietly() -> None:
     """HiGHS prints its banner on the C-level stdout when a process makes its first model, before any option
     can be set. That first model is made here with stdout pointed at stderr, so that stdout carries only what
     the CLI promises (`h3ds place --steps -` writes JSON lines there)."""
-
-    lock = threading.Lock()
-    shown = False
-
-    @classmethod
-    def to_stderr(cls) -> None:
-        with cls.lock:
-            if cls.shown:
-                return
-            sys.stdout.flush()
-            saved = os.dup(1)
-            try:
-                os.dup2(2, 1)
-                highspy.Highs()
-            finally:
-                os.dup2(saved, 1)
-                os.close(saved)
-            cls.shown = True
+    with _REDIRECT:
+        sys.stdout.flush()
+        saved = os.dup(1)
+        try:
+            os.dup2(2, 1)
+            highspy.Highs()
+        finally:
+            os.dup2(saved, 1)
+            os.close(saved)
 
 
 class _Rows:
@@ -147,7 +141,7 @@ class MILPSolver(ModelSolver):
         names = list(model.vars)
         index = {n: i for i, n in enumerate(names)}
         rows = big_m_rows(model, index)
-        _Banner.to_stderr()
+        _first_model_quietly()
         h = highspy.Highs()
         h.setOptionValue("output_flag", False)
         h.setOptionValue("random_seed", int(seed) % 2_147_483_647)
