@@ -10,6 +10,7 @@ save), reopened and downloaded, not edited (the single-room editing tools stay i
 from __future__ import annotations
 
 import contextlib
+import threading
 import time
 from dataclasses import replace
 
@@ -78,6 +79,9 @@ class ApartmentMode:
         s.checks_md.content = ""
         s.graph_md.content = self.summary()
         s.draw_graph(apartment.task_graph)
+        rooms = [(plan, layout.placements) for plan, layout in zip(apartment.plans, apartment.layouts)]
+        threading.Thread(target=s.energy_curve, args=(rooms, steps, self.room_of, lambda: self.current is apartment),
+                         daemon=True).start()
 
     def save(self) -> None:
         """Accept & save: a new stored scene, or the next version of the stored apartment on screen. There

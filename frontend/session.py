@@ -14,6 +14,7 @@ import contextlib
 import logging
 import threading
 import time
+from collections.abc import Callable
 from dataclasses import replace
 
 import numpy as np
@@ -28,7 +29,7 @@ from frontend.checks import Finding, run_checks, summary
 from frontend.constraints_panel import ConstraintsPanel
 from frontend.graph_image import render as render_graph
 from frontend.history import History
-from frontend.replay import RoomOf, one_room, placements_at, room_at, to_come
+from frontend.replay import RoomOf, energy_after_steps, one_room, room_at
 from frontend.scenes_panel import ScenesPanel
 from frontend.state import State, Values
 from frontend.view import SceneView, world
@@ -36,7 +37,7 @@ from models.energy.exact import layout_energy
 from models.language import InstructionError
 from models.metrics.realism import checks as habit_checks
 from models.placement import ALL_OBJECTS, DEFAULT_SOLVER, SOLVERS, PlacementStep
-from models.values import Scene, TaskGraph, TaskObject
+from models.values import ConstraintPlan, Scene, TaskGraph, TaskObject
 from models.values.apartment import APARTMENT
 from models.world import ROOM_TYPES, catalogue
 from studio_db import Store
@@ -284,7 +285,7 @@ class StudioSession:
                 self.refresh_checks()
             if self.state.gen is gen and not self.view.labels:
                 self.view.draw_labels(gen.scene, self._visible())
-        self._energy_curve(gen, steps)
+        self.energy_curve([(gen.plan, gen.layout.placements)], steps, one_room, lambda: self.state.gen is gen)
 
     def redraw(self, labels: bool = True) -> None:
         if self.apartment.current is not None:
@@ -434,12 +435,12 @@ class StudioSession:
         if shown == len(steps):
             self.view.heat_map(None)
 
-    def _energy_curve(self, gen: Generation, steps: list[PlacementStep]) -> None:
-        """The energy terms after each placement step (exact energy) of the room as the animation shows it then
-        (frontend.replay), the objects still to come pending, as the placer's own step sees them; drawn when ready."""
-        rows = [layout_energy(gen.plan, placements_at(gen.layout.placements, steps, k),
-                              pending=to_come(steps, k)).as_dict() for k in range(1, len(steps) + 1)]
-        if self.state.gen is not gen or not rows:
+    def energy_curve(self, rooms: list[tuple[ConstraintPlan, list]], steps: list[PlacementStep], room_of: RoomOf,
+                     current: Callable[[], bool]) -> None:
+        """The energy terms after each placement step of the room (or the apartment's rooms, summed) as the animation
+        shows it then (frontend.replay.energy_after_steps); drawn when ready if what it is of is `current`."""
+        rows = energy_after_steps(rooms, steps, room_of)
+        if not current() or not rows:
             return
         xs = np.arange(1, len(rows) + 1, dtype=float)
         # rounded: a term's float noise (1e-17 where it is 0) would otherwise set the plot's scale

@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 from studio_support import (SCREENSHOTS, WAIT, browser, choose, close_tabs, enter, field, open_studio,  # noqa: F401
-                            session_of, studio)
+                            session_of, studio, wait_until)
 
 pytest.importorskip("playwright")
 
@@ -29,6 +29,8 @@ def test_apartment_in_the_studio(browser, studio):  # noqa: F811
     page.get_by_text("Apartment ready").wait_for(timeout=WAIT)
     apartment = session.apartment.current
     assert apartment.key_nav == 1.0
+    wait_until(page, lambda: len(session.energy_plot.data[0]) == len(session.state.steps),
+               "the energy plot of the apartment's steps")  # not the room generated before
     assert [hr.room.type for hr in apartment.floorplan.rooms] == ["kitchen", "living room", "bedroom"]
     nodes = {h._impl.name for h in session.view.nodes}
     assert {"/rooms/1. kitchen", "/rooms/2. living room", "/rooms/3. bedroom", "/markers/path"} <= nodes

@@ -283,3 +283,23 @@ def test_the_task_graph_reading_lists_each_role_and_the_relations():
     assert "**Key objects:** Bread, CounterTop" in text and "**Anchor object:** CounterTop" in text
     assert "**Inference objects:** Fridge" in text and "Bread *cooled_in* Fridge; Bread *placed_at* CounterTop" in text
     assert "**Relations:** —" in graph_summary(graph.model_copy(update={"relations": []}))
+
+
+def test_the_energy_plot_of_an_apartment_sums_its_rooms_solved_one_after_another(pipeline):
+    from frontend.apartment import ApartmentMode
+    from frontend.replay import energy_after_steps
+    from models.energy.exact import layout_energy
+
+    steps = []
+    apartment = pipeline.generate_apartment("Put a chilled bread on the counter", ["kitchen", "bedroom"], seed=3,
+                                            solver="dfs", observer=steps.append)
+    rooms = [(plan, layout.placements) for plan, layout in zip(apartment.plans, apartment.layouts)]
+    rows = energy_after_steps(rooms, steps, ApartmentMode.room_of)
+    finals = [layout_energy(plan, placements).total for plan, placements in rooms]
+    assert min(finals) > 0  # both rooms count in the sum (this seed's)
+    assert len(rows) == len(steps) and rows[0]["missing"] == 0
+    assert abs(rows[-1]["total"] - sum(finals)) < 1e-9  # every room as the apartment has it
+    first = ApartmentMode.room_of(steps[0].object_id)
+    switch = next(k for k, s in enumerate(steps) if ApartmentMode.room_of(s.object_id) != first)
+    assert abs(rows[switch - 1]["total"] - finals[0]) < 1e-9  # the first room done, the second all to come
+    assert energy_after_steps([], steps) == []
