@@ -4,15 +4,18 @@ Each placed floor object gets the real asset its plan size came from; each surfa
 (or, for fridges, microwaves, safes and the like, in) its parent as an AI2-THOR child, spread over
 the parent's top so that no two children share a spot. If a parent could not be placed, its children
 move to another placed receptacle that accepts them, or are reported unplaced. The robot starts just
-inside the first door facing in; the VR user starts at models.interaction.vr_start_pose's best pose
-(reaching and seeing the anchor), with the other valid poses as alternatives.
+inside a door facing in (the door that reaches the most task objects, `robot_start`); the VR user starts
+at models.interaction.vr_start_pose's best pose (reaching and seeing the anchor), with the other valid
+poses as alternatives.
 """
 
 from __future__ import annotations
 
 import random
+from collections.abc import Sequence
 
-from models.geometry import front
+from models.energy import navigation as nav
+from models.geometry import Footprint, front
 from models.interaction.vr_pose import vr_start_pose
 from models.values import (
     AgentPose,
@@ -56,15 +59,35 @@ def _child(obj: SurfaceObject, parent: Placement, parent_type: str, spot: tuple[
                        y=round(max(y, obj.size.y / 2), 4), z=round(spot[1], 4), rotation=rotation, size=obj.size)
 
 
-def robot_start(plan: RoomPlan) -> AgentPose:
+def robot_start(plan: RoomPlan, placements: Sequence[Placement] = ()) -> AgentPose:
+    """Just inside a door, facing in: of the room's doors, the one from which the robot reaches the most task objects,
+    then the most free floor (as Key_NAV counts it, models.energy.navigation); the first door on a tie. A room's
+    second door may open onto a bed that the first one's side of the room does not share."""
     room = plan.room
     if not room.doors:
         return AgentPose(x=room.width / 2, z=room.depth / 2, rotation=0)
-    d = room.doors[0]
+    d = room.doors[_entry(plan, placements)]
     return {"south": AgentPose(x=d.center, z=ROBOT_INSET, rotation=0),
             "north": AgentPose(x=d.center, z=room.depth - ROBOT_INSET, rotation=180),
             "west": AgentPose(x=ROBOT_INSET, z=d.center, rotation=90),
             "east": AgentPose(x=room.width - ROBOT_INSET, z=d.center, rotation=270)}[d.wall]
+
+
+def _entry(plan: RoomPlan, placements: Sequence[Placement]) -> int:
+    """The index of the door `robot_start` enters by."""
+    room = plan.room
+    if len(room.doors) < 2:
+        return 0
+    grid = nav.Grid(room.width, room.depth)
+    feet = {p.id: Footprint(p.x, p.z, p.size.x, p.size.z, p.rotation) for p in placements}
+    blocked = nav.blocked_by_polygons(grid, [f.polygon() for f in feet.values()])
+    tasks = [feet[o.id] for o in plan.objects if o.role != "context" and o.id in feet]
+
+    def score(k: int) -> tuple[int, int, int]:
+        reach = nav.reachable_from(blocked, nav.in_box_mask(grid, nav.door_boxes(room)[k]))
+        return sum(nav.can_reach(grid, reach, f) for f in tasks), int(reach.sum()), -k
+
+    return max(range(len(room.doors)), key=score)
 
 
 def assemble_scene(plan: RoomPlan, layout: Layout, graph: TaskGraph | None = None, seed: int = 0,
@@ -106,7 +129,8 @@ def assemble_scene(plan: RoomPlan, layout: Layout, graph: TaskGraph | None = Non
     room = plan.room
     provenance = [pv for pv in (graph.provenance if graph else None, plan.provenance, layout.provenance) if pv]
     scene = Scene(id=plan.id, room=room, task_graph=graph, objects=objects, unplaced=unplaced,
-                  robot_start=robot_start(plan), warnings=warnings, room_plan=plan, constraints=constraints,
+                  robot_start=robot_start(plan, layout.placements), warnings=warnings, room_plan=plan,
+                  constraints=constraints,
                   provenance=provenance + [Provenance(stage="scene", method="assemble", seed=seed)])
     vr = vr_start_pose(scene)
     missing_pose = [f"VR start pose: {r}" for r in vr.reasons] if graph is not None and graph.anchor else []
