@@ -217,19 +217,23 @@ def test_execute_step_takes_the_plan_steps_json_form():
 
 
 def test_the_robot_enters_by_the_door_from_which_it_reaches_the_task_objects():
-    """A room with two doors, a bed across it: the robot starts at the door on the fridge's side, not the first."""
+    """A room with two doors, a counter across it: the robot starts at the door on the fridge's side, not the first."""
     from models.scene.assemble import robot_start
-    from models.values import Opening, PlanObject, Placement, Room, RoomPlan, Size
+    from models.values import Opening, Room, RoomPlan, SceneObject, Size
 
     room = Room(type="kitchen", width=4.0, depth=4.0, doors=[Opening(wall="south", center=1.0, width=1.0),
                                                              Opening(wall="north", center=3.0, width=1.0)])
-    fridge = PlanObject(id="fridge-0", type="Fridge", size=Size(x=0.8, y=1.8, z=0.7), role="inference")
-    divider = PlanObject(id="counter-0", type="CounterTop", size=Size(x=4.0, y=0.9, z=0.6))
-    plan = RoomPlan(id="two-doors", room=room, objects=[fridge, divider])
-    placements = [Placement(id="fridge-0", type="Fridge", x=0.5, z=3.6, rotation=180.0, size=fridge.size),
-                  Placement(id="counter-0", type="CounterTop", x=2.0, z=1.6, rotation=0.0, size=divider.size)]
-    north = robot_start(plan, placements)
+    plan = RoomPlan(id="two-doors", room=room, objects=[])
+
+    def placed(oid, type_name, x, z, w, d, role="context", children=()):
+        return SceneObject(id=oid, type=type_name, asset_id="a", role=role, x=x, y=0.5, z=z, rotation=0.0,
+                           size=Size(x=w, y=1.0, z=d), children=list(children))
+
+    bread = placed("bread-0", "Bread", 0.5, 3.6, 0.2, 0.1, role="key")
+    fridge = placed("fridge-0", "Fridge", 0.5, 3.6, 0.8, 0.7, children=[bread])  # a context host of a task object
+    across = placed("counter-0", "CounterTop", 2.0, 1.6, 4.0, 0.6)
+    north = robot_start(plan, [fridge, across])
     assert (north.z, north.rotation) == (4.0 - 0.6, 180)  # facing in from the north door
     assert robot_start(plan).z == 0.6  # nothing placed: the first door
-    opened = [placements[0], placements[1].model_copy(update={"x": 2.6, "size": Size(x=2.8, y=0.9, z=0.6)})]
-    assert robot_start(plan, opened).z == 0.6  # a way round the counter: both doors reach it, the first wins
+    gap = across.model_copy(update={"x": 2.6, "size": Size(x=2.8, y=1.0, z=0.6)})
+    assert robot_start(plan, [fridge, gap]).z == 0.6  # a way round the counter: both doors reach it, the first wins

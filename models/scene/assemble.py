@@ -14,14 +14,18 @@ from __future__ import annotations
 import random
 from collections.abc import Sequence
 
+import shapely
+
 from models.energy import navigation as nav
 from models.geometry import Footprint, front
+from models.interaction.robot_plan import APPROACH
 from models.interaction.vr_pose import vr_start_pose
 from models.values import (
     AgentPose,
     Layout,
     Placement,
     Provenance,
+    Room,
     RoomPlan,
     Scene,
     SceneObject,
@@ -59,35 +63,41 @@ def _child(obj: SurfaceObject, parent: Placement, parent_type: str, spot: tuple[
                        y=round(max(y, obj.size.y / 2), 4), z=round(spot[1], 4), rotation=rotation, size=obj.size)
 
 
-def robot_start(plan: RoomPlan, placements: Sequence[Placement] = ()) -> AgentPose:
-    """Just inside a door, facing in: of the room's doors, the one from which the robot reaches the most task objects,
-    then the most free floor (as Key_NAV counts it, models.energy.navigation); the first door on a tie. A room's
-    second door may open onto a bed that the first one's side of the room does not share."""
+def robot_start(plan: RoomPlan, objects: Sequence[SceneObject] = ()) -> AgentPose:
+    """Just inside a door, facing in: of the room's doors, the one from whose free floor the robot comes within
+    `APPROACH` of the most task objects (floor objects and what stands on or in them, as the robot plan asks), then
+    reaches the most free floor; the first door on a tie. A room's second door may open onto a bed across the way."""
     room = plan.room
     if not room.doors:
         return AgentPose(x=room.width / 2, z=room.depth / 2, rotation=0)
-    d = room.doors[_entry(plan, placements)]
+    d = room.doors[_entry(room, objects)]
     return {"south": AgentPose(x=d.center, z=ROBOT_INSET, rotation=0),
             "north": AgentPose(x=d.center, z=room.depth - ROBOT_INSET, rotation=180),
             "west": AgentPose(x=ROBOT_INSET, z=d.center, rotation=90),
             "east": AgentPose(x=room.width - ROBOT_INSET, z=d.center, rotation=270)}[d.wall]
 
 
-def _entry(plan: RoomPlan, placements: Sequence[Placement]) -> int:
+def _entry(room: Room, objects: Sequence[SceneObject]) -> int:
     """The index of the door `robot_start` enters by."""
-    room = plan.room
-    if len(room.doors) < 2:
+    if len(room.doors) < 2 or not objects:
         return 0
     grid = nav.Grid(room.width, room.depth)
-    feet = {p.id: Footprint(p.x, p.z, p.size.x, p.size.z, p.rotation) for p in placements}
-    blocked = nav.blocked_by_polygons(grid, [f.polygon() for f in feet.values()])
-    tasks = [feet[o.id] for o in plan.objects if o.role != "context" and o.id in feet]
+    blocked = nav.blocked_by_polygons(grid, [_foot(o) for o in objects])
+    tasks = [_foot(o) for o in objects if o.role != "context"] + \
+            [_foot(c) for o in objects for c in o.children if c.role != "context"]
+    gx, gz = grid.mesh()
 
     def score(k: int) -> tuple[int, int, int]:
         reach = nav.reachable_from(blocked, nav.in_box_mask(grid, nav.door_boxes(room)[k]))
-        return sum(nav.can_reach(grid, reach, f) for f in tasks), int(reach.sum()), -k
+        cells = shapely.points(gx[reach], gz[reach])
+        near = sum(len(cells) > 0 and float(shapely.distance(t, cells).min()) <= APPROACH for t in tasks)
+        return near, int(reach.sum()), -k
 
     return max(range(len(room.doors)), key=score)
+
+
+def _foot(o: SceneObject) -> shapely.Polygon:
+    return Footprint(o.x, o.z, o.size.x, o.size.z, o.rotation).polygon()
 
 
 def assemble_scene(plan: RoomPlan, layout: Layout, graph: TaskGraph | None = None, seed: int = 0,
@@ -129,7 +139,7 @@ def assemble_scene(plan: RoomPlan, layout: Layout, graph: TaskGraph | None = Non
     room = plan.room
     provenance = [pv for pv in (graph.provenance if graph else None, plan.provenance, layout.provenance) if pv]
     scene = Scene(id=plan.id, room=room, task_graph=graph, objects=objects, unplaced=unplaced,
-                  robot_start=robot_start(plan, layout.placements), warnings=warnings, room_plan=plan,
+                  robot_start=robot_start(plan, objects), warnings=warnings, room_plan=plan,
                   constraints=constraints,
                   provenance=provenance + [Provenance(stage="scene", method="assemble", seed=seed)])
     vr = vr_start_pose(scene)
