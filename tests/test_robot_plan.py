@@ -237,3 +237,23 @@ def test_the_robot_enters_by_the_door_from_which_it_reaches_the_task_objects():
     assert robot_start(plan).z == 0.6  # nothing placed: the first door
     gap = across.model_copy(update={"x": 2.6, "size": Size(x=2.8, y=1.0, z=0.6)})
     assert robot_start(plan, [fridge, gap]).z == 0.6  # a way round the counter: both doors reach it, the first wins
+
+
+def test_a_task_object_goes_on_the_part_of_its_host_the_robot_can_come_near():
+    """A long counter whose west end is walled in by shelves: the bread (alone on it, then beside a context cup)
+    leaves the middle or its slot for the end the robot reaches; a context object keeps its slot."""
+    from models.scene.assemble import APPROACH, _far_from_reach, _spots
+    from models.values import Opening, Placement, Room, Size, SurfaceObject
+
+    room = Room(type="kitchen", width=6.0, depth=4.0, doors=[Opening(wall="south", center=5.0, width=1.0)])
+    counter = Placement(id="counter-0", type="CounterTop", x=3.0, z=3.7, rotation=180.0, size=Size(x=5.6, y=0.9, z=0.6))
+    shelves = Placement(id="shelf-0", type="ShelvingUnit", x=4.0, z=1.8, rotation=0.0, size=Size(x=0.4, y=2.0, z=3.6))
+    far = _far_from_reach(room, [counter, shelves])
+    small = Size(x=0.2, y=0.1, z=0.2)
+    bread = SurfaceObject(id="bread-0", type="Bread", size=small, role="key", parent="counter-0")
+    cup = SurfaceObject(id="cup-0", type="Cup", size=small, parent="counter-0")
+    (alone,) = _spots(counter, [bread], far)
+    assert far(3.0, 3.7) > APPROACH >= far(*alone) and alone[0] > 3.0  # off the middle, to the reachable east
+    cup_first = _spots(counter, [cup, bread], far)  # in order, the bread's slot would be the walled-in west one
+    assert far(*cup_first[1]) <= APPROACH < far(*cup_first[0]) and cup_first == _spots(counter, [cup, cup], far)[::-1]
+    assert _spots(counter, [cup], far) == [(3.0, 3.7)]  # a context object alone stays in the middle

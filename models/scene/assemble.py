@@ -12,9 +12,10 @@ poses as alternatives.
 from __future__ import annotations
 
 import random
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 
 import numpy as np
+from scipy import ndimage
 
 from models.energy import navigation as nav
 from models.geometry import boxes, front
@@ -39,6 +40,7 @@ from models.world.catalogue import HOST_TYPES
 INSIDE_TYPES = {"Fridge", "Microwave", "Safe", "Cabinet", "Drawer", "GarbageCan", "Box", "Toilet", "SinkBasin",
                 "BathtubBasin", "Sink", "LaundryHamper", "WashingMachine", "ClothesDryer"}
 ROBOT_INSET = 0.6
+ALONG = 17  # spots tried along a host's top for a task object that stands on it alone
 
 
 def _slots(parent: Placement, n: int) -> list[tuple[float, float]]:
@@ -51,6 +53,41 @@ def _slots(parent: Placement, n: int) -> list[tuple[float, float]]:
         lateral = -usable / 2 + usable * (k + 0.5) / n
         spots.append((parent.x + rx * lateral, parent.z + rz * lateral))
     return spots
+
+
+def _spots(parent: Placement, kids: list[SurfaceObject],
+           far: Callable[[float, float], float]) -> list[tuple[float, float]]:
+    """The kids' spots: `_slots` in order, unless a task object's slot lies beyond the robot plan's `APPROACH` of the
+    free floor the robot reaches (`far`: distance from a point to it). Then the task objects take the slots nearest
+    that floor, the others the rest in order; a task object alone takes the spot along the top nearest it."""
+    spots = _slots(parent, len(kids))
+    task = [k for k, c in enumerate(kids) if c.role != "context"]
+    if all(far(*spots[k]) <= APPROACH for k in task):
+        return spots
+    if len(kids) == 1:
+        return [min(_slots(parent, ALONG), key=lambda xz: (far(*xz), abs(xz[0] - parent.x) + abs(xz[1] - parent.z)))]
+    nearest = sorted(range(len(spots)), key=lambda k: far(*spots[k]))
+    given = dict(zip(task, nearest))
+    rest = iter(k for k in range(len(spots)) if k not in given.values())
+    return [spots[given[k]] if k in given else spots[next(rest)] for k in range(len(kids))]
+
+
+def _far_from_reach(room: Room, placements: Sequence[Placement]) -> Callable[[float, float], float]:
+    """Distance from a point of the room to the nearest free cell the robot reaches from a door (Key_NAV's grid,
+    objects as axis-aligned boxes); infinite when it reaches none."""
+    grid = nav.Grid(room.width, room.depth)
+    blocked = nav.blocked_by_boxes(grid, _boxes(placements))
+    reach = nav.reachable_space(grid, blocked, room)
+    if not reach.any():
+        return lambda x, z: float("inf")
+    dist = ndimage.distance_transform_edt(~reach) * grid.cell
+
+    def far(x: float, z: float) -> float:
+        i = min(max(int(x // grid.cell), 0), dist.shape[0] - 1)
+        j = min(max(int(z // grid.cell), 0), dist.shape[1] - 1)
+        return float(dist[i, j])
+
+    return far
 
 
 def _child(obj: SurfaceObject, parent: Placement, parent_type: str, spot: tuple[float, float], asset_id: str,
@@ -97,7 +134,7 @@ def _entry(room: Room, objects: Sequence[SceneObject]) -> int:
     return max(range(len(room.doors)), key=score)
 
 
-def _boxes(objects: Sequence[SceneObject]) -> np.ndarray:
+def _boxes(objects: Sequence[SceneObject | Placement]) -> np.ndarray:
     """(N, 4) axis-aligned boxes [xmin, zmin, xmax, zmax] around the objects' footprints."""
     return boxes([o.x for o in objects], [o.z for o in objects], [o.size.x for o in objects],
                  [o.size.z for o in objects], [o.rotation for o in objects]).reshape(-1, 4)
@@ -127,6 +164,7 @@ def assemble_scene(plan: RoomPlan, layout: Layout, graph: TaskGraph | None = Non
         children[parent_id].append(s)
 
     objects = []
+    far = _far_from_reach(plan.room, layout.placements)
     for pid, p in placed.items():
         obj = plan_objects.get(pid)
         asset = cat.pick_asset(p.type, rng, fits=(p.size.x, p.size.z))
@@ -135,7 +173,7 @@ def assemble_scene(plan: RoomPlan, layout: Layout, graph: TaskGraph | None = Non
                             f"{cat.host(p.type).name} asset {asset.asset_id}")
         kids = [_child(c, p, p.type, spot, cat.pick_asset(c.type, rng, fits=(c.size.x, c.size.z)).asset_id,
                        p.rotation)
-                for c, spot in zip(children[pid], _slots(p, len(children[pid])))]
+                for c, spot in zip(children[pid], _spots(p, children[pid], far))]
         objects.append(SceneObject(id=pid, type=p.type, asset_id=asset.asset_id,
                                    role=obj.role if obj else "context", x=p.x, y=round(p.size.y / 2, 4), z=p.z,
                                    rotation=p.rotation, size=p.size, children=kids))
