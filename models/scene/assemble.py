@@ -2,7 +2,8 @@
 
 Each placed floor object gets the real asset its plan size came from; each surface object goes on
 (or, for fridges, microwaves, safes and the like, in) its parent as an AI2-THOR child, spread over
-the parent's top so that no two children share a spot. If a parent could not be placed, its children
+the parent's top so that no two children share a spot, a task object where the robot can come near it
+(`_spots`). If a parent could not be placed, its children
 move to another placed receptacle that accepts them, or are reported unplaced. The robot starts just
 inside a door facing in (the door that reaches the most task objects, `robot_start`); the VR user starts
 at models.interaction.vr_start_pose's best pose (reaching and seeing the anchor), with the other valid
