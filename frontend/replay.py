@@ -10,7 +10,7 @@ import math
 from collections.abc import Callable, Sequence
 
 from models.energy.exact import layout_energy
-from models.placement import PlacementStep
+from models.placement import PlacementProblem, PlacementStep
 from models.values import ConstraintPlan, Placement, Scene, SceneObject
 
 Pose = tuple[float, float, float]  # x, z, Unity yaw
@@ -92,25 +92,22 @@ def energy_after_steps(rooms: Sequence[tuple[ConstraintPlan, Sequence[Placement]
                        room_of: RoomOf = one_room) -> list[dict[str, float]]:
     """The energy terms (exact energy) after each step, summed over the `rooms` (plan, placements now; an apartment's
     are solved one after another): each room as it stood then, the objects still to come pending, as the placer's
-    own step sees them. A room is scored again only at its own steps."""
-    if not rooms:
-        return []
+    own step sees them. A room is scored again only at its own steps (a room without objects scores 0)."""
     of_room: dict[str, list[PlacementStep]] = {}
     for step in steps:
         of_room.setdefault(room_of(step.object_id), []).append(step)
+    plans = {room_of(plan.objects[0].id): (plan, placements, PlacementProblem.from_plan(plan))
+             for plan, placements in rooms if plan.objects}
+    terms = {room: layout_energy(plan, [], problem, pending=to_come(of_room.get(room, []), 0)).as_dict()
+             for room, (plan, _, problem) in plans.items()}
     shown = dict.fromkeys(of_room, 0)
-    terms = {}
-    for plan, placements in rooms:
-        room = room_of(plan.objects[0].id) if plan.objects else None
-        terms[room] = layout_energy(plan, [], pending=to_come(of_room.get(room, []), 0)).as_dict()
-    plans = {room_of(plan.objects[0].id): (plan, placements) for plan, placements in rooms if plan.objects}
     rows = []
-    for step in steps:
+    for step in steps if terms else ():
         room = room_of(step.object_id)
         shown[room] += 1
         if room in plans:
-            plan, placements = plans[room]
-            terms[room] = layout_energy(plan, placements_at(placements, of_room[room], shown[room]),
+            plan, placements, problem = plans[room]
+            terms[room] = layout_energy(plan, placements_at(placements, of_room[room], shown[room]), problem,
                                         pending=to_come(of_room[room], shown[room])).as_dict()
         rows.append({t: sum(r[t] for r in terms.values()) for t in next(iter(terms.values()))})
     return rows
