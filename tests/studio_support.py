@@ -121,6 +121,15 @@ def generate(page, session, instruction: str, room: str, run: int | None = None)
     choose(page, "Room type", room, session.room)
     page.get_by_role("button", name="Generate").click()
     page.get_by_text(re.compile(rf"Scene ready \(#{run}\)" if run else "Scene ready")).wait_for(timeout=WAIT)
+    dismiss_notices(page)
+
+
+def dismiss_notices(page):
+    """Close viser's notices (the "software WebGL" one, as chromium runs without a GPU): one covers the view's top
+    left corner and takes the mouse events meant for the scene there."""
+    close = page.locator(".mantine-Notification-root button")
+    for i in reversed(range(close.count())):
+        close.nth(i).click()
 
 
 def settle(page, frames: int = 3):

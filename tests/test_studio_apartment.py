@@ -8,8 +8,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from studio_support import (SCREENSHOTS, WAIT, browser, choose, close_tabs, enter, field, open_studio,  # noqa: F401
-                            session_of, studio, wait_until)
+from studio_support import (SCREENSHOTS, WAIT, browser, choose, close_tabs, dismiss_notices, enter,  # noqa: F401
+                            field, open_studio, session_of, studio, wait_until)
 
 pytest.importorskip("playwright")
 
@@ -40,9 +40,7 @@ def test_apartment_in_the_studio(browser, studio):  # noqa: F811
     SCREENSHOTS.mkdir(parents=True, exist_ok=True)
     page.screenshot(path=str(SCREENSHOTS / "apartment.png"))
     page.get_by_role("button", name="Top view").click()
-    close = page.locator(".mantine-Notification-root button")  # viser's "software WebGL" notice
-    if close.count():
-        close.first.click()
+    dismiss_notices(page)
     page.wait_for_timeout(1500)
     page.screenshot(path=str(SCREENSHOTS / "apartment-top.png"))  # the README's picture (docs/apartment-studio.png)
 

@@ -112,7 +112,8 @@ def test_drag_into_collision_warns_asks_before_saving_and_undo_restores(browser,
         assert abs(moved.x - counter.x) < 0.3 and moved.z == fridge.z
     else:
         assert abs(moved.z - counter.z) < 0.3 and moved.x == fridge.x
-    assert session.controls is not None and abs(session.controls.position[2] + moved.z) < 1e-6  # stays on it
+    # the gizmo stays on it: the layout keeps 0.1 mm, and viser skips a position within its relative 1e-5 of the last
+    assert session.controls is not None and abs(session.controls.position[2] + moved.z) < 1e-4
 
     page.get_by_role("tab", name="Scenes").click()
     page.get_by_role("button", name="Accept & save").click()
@@ -181,13 +182,13 @@ def test_downloads_are_the_selected_version(browser, studio):
     if session.state.findings:  # the placer's own layout may already fail a check (asked before saving)
         page.get_by_role("button", name="Save anyway").click()
     page.get_by_text(re.compile(r"Saved as scene \d+, version 1")).wait_for(timeout=WAIT)
-    stool = session.state.gen.layout.placement("stool-3")
+    stool = session.state.gen.layout.placement("stool-1")
     settle(page)
-    page.mouse.click(*object_xy(session, "stool-3", 0.9))  # a typed-in pose and a turn, in the picked panel
-    wait_until(page, lambda: session.selected == "stool-3", "stool-3 picked")
+    page.mouse.click(*object_xy(session, "stool-1", 0.9))  # a typed-in pose and a turn, in the picked panel
+    wait_until(page, lambda: session.selected == "stool-1", "stool-3 picked")
     enter(page, "x (m)", round(stool.x - 0.4, 2), session.pose_x)
     page.get_by_role("button", name="Apply pose").click()
-    page.get_by_text(re.compile(r"Moved `?stool-3`? .*typed pose")).wait_for(timeout=WAIT)
+    page.get_by_text(re.compile(r"Moved `?stool-1`? .*typed pose")).wait_for(timeout=WAIT)
     page.get_by_role("button", name="+90°").click()
     page.get_by_text(re.compile(r"turn \+90")).wait_for(timeout=WAIT)
     page.get_by_role("button", name="Accept & save").click()

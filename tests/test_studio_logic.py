@@ -85,7 +85,7 @@ def test_checks_flag_collisions_doorway_start_and_metric_drops(pipeline):
     assert {"collision", "metric-drop"} <= kinds
     assert any("fridge-0" in f.objects and "countertop-0" in f.objects for f in findings)
     start = gen.scene.robot_start
-    blocked = pipeline.move(gen, "stool-3", start.x, start.z, 0)
+    blocked = pipeline.move(gen, "stool-1", start.x, start.z, 0)
     kinds = {f.kind for f in run_checks(blocked.plan, blocked.layout, blocked.scene, reference)[0]}
     assert {"start-blocked", "door-blocked"} <= kinds
 

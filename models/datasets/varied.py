@@ -38,7 +38,7 @@ def random_settings(rng: random.Random) -> tuple[RoomPlannerSettings, Habits]:
     low = rng.randint(2, 6)
     settings = RoomPlannerSettings(min_context=low, max_context=rng.randint(low + 4, 16),
                                    size_scale=rng.uniform(0.8, 1.25), surface_items=rng.uniform(0.3, 0.7),
-                                   group_chance=rng.uniform(0.4, 0.9), defining=False)  # as the stored sets
+                                   group_chance=rng.uniform(0.4, 0.9), as_stored=True)  # as the stored sets
     rate = lambda: rng.uniform(0.0, 0.3)  # noqa: E731
     habits = Habits(rename=rate(), misspell=rate() / 3, id_respell=rate() / 2, missing_target=rate() / 5,
                     self_target=rate() / 6, drop_line=rate() / 4, drop_relation=rate() * 1.5,

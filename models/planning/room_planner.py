@@ -4,12 +4,14 @@ Floor objects (fridge, counter, table...) go to the placer; everything that stan
 (bread, microwave, desk lamp) becomes a surface object with a parent floor object, which is added
 when the room has none that can hold it. Context objects are sampled from how often each type occurs
 in the 120 hand-designed iTHOR rooms of that type (authored priors for the five other room types), and
-furniture groups (a dining table with its chairs, a desk with its chair) follow ProcTHOR's groups.
-Deterministic for a seed.
+furniture groups (a dining table with its chairs, a desk with its chair) follow ProcTHOR's groups; each type comes as
+often as it does there (one bed in most bedrooms, two side tables in a living room on average). Deterministic for a
+seed.
 """
 
 from __future__ import annotations
 
+import math
 import random
 from collections import Counter
 from dataclasses import dataclass
@@ -38,7 +40,9 @@ class RoomPlannerSettings:
     size_scale: float = 1.0
     surface_items: float = 0.5  # expected context items per open surface
     group_chance: float = 0.8
-    defining: bool = True  # every room gets its type's defining furniture (rooms.RoomSpec.defining), kept to the end
+    # build rooms as the stored datasets were built: no defining furniture (rooms.RoomSpec.defining), and a count of
+    # context pieces drawn first and filled by frequency, repeats allowed (a bedroom got 2 beds on average, 4 at most)
+    as_stored: bool = False
 
 
 def plan_role(roles: list[str]) -> str:
@@ -91,15 +95,25 @@ class RoomPlanner:
 
         # 2. the furniture that makes the room its type (a bedroom's bed) unless the task brought it, then context
         # furniture from the room priors, then the groups they anchor
-        keep = set()
-        if self.settings.defining:
+        if self.settings.as_stored:
+            keep, context, members = set(), self._sample_context(room_type, rng, {o.type for o in floor}), []
+        else:
             brought = {o.type for o in floor}
             keep = {add_floor(t, "context").id for t in ROOM_SPECS[room_type].defining if t not in brought}
-        for type_name in self._sample_context(room_type, rng, {o.type for o in floor}):
+            drawn = self._draw_context(room_type, rng, Counter(o.type for o in floor))
+            context = [t for t in drawn if t not in GROUP_MEMBER_TYPES]
+            members = [t for t in drawn if t in GROUP_MEMBER_TYPES]  # after the groups, which may bring them
+        for type_name in context:
             add_floor(type_name, "context")
+        grouped: Counter[str] = Counter()
         for root in list(floor):
             for member in self._group_members(root.type, room_type, rng):
-                add_floor(member, "context")
+                grouped[add_floor(member, "context").type] += 1
+        for type_name in members:
+            if grouped[type_name]:
+                grouped[type_name] -= 1
+            else:
+                add_floor(type_name, "context")
 
         # 3. surface objects: task objects first (the manipulated one away from its destination)
         target = graph.target
@@ -135,19 +149,37 @@ class RoomPlanner:
                     out[name] = p
         return out
 
-    def _sample_context(self, room_type: str, rng: random.Random, present: set[str]) -> list[str]:
-        """A count drawn from [min_context, max_context], filled with types drawn by room frequency.
-
-        Types that occur once per room (a fridge) are drawn at most once; others may repeat.
-        """
-        s = self.settings
+    def _draw_context(self, room_type: str, rng: random.Random, present: Counter[str]) -> list[str]:
+        """Each candidate type with its chance of being in such a room, then as many of it as such rooms hold (1 plus
+        a Poisson draw with the iTHOR mean's excess), less those already there; kept within [min_context,
+        max_context]: the first of each type before any second, topped up by frequency when short."""
         weights = self._candidates(room_type)
-        target = rng.randint(s.min_context, s.max_context)
+        drawn: list[tuple[int, float, str]] = []
+        for name in sorted(weights):
+            if rng.random() >= weights[name]:
+                continue
+            extra = _poisson(self.cat.room_count(name, room_type) - 1, rng) if self._repeats(name) else 0
+            drawn += [(k, rng.random(), name) for k in range(present[name], 1 + extra)]
+        chosen = [name for _, _, name in sorted(drawn)[:self.settings.max_context]]
+        short = self.settings.min_context - len(chosen)
+        return chosen + self._fill(room_type, rng, set(present) | set(chosen), short)
+
+    def _repeats(self, name: str) -> bool:
+        return bool(self.cat[name].placement.get("multiple_per_room"))
+
+    def _sample_context(self, room_type: str, rng: random.Random, present: set[str]) -> list[str]:
+        """As the stored datasets were built: a count drawn from [min_context, max_context], filled by `_fill`."""
+        s = self.settings
+        return self._fill(room_type, rng, present, rng.randint(s.min_context, s.max_context))
+
+    def _fill(self, room_type: str, rng: random.Random, present: set[str], count: int) -> list[str]:
+        """`count` types drawn by room frequency. Types that occur once per room (a fridge) are drawn at most once
+        and not when `present`; others may repeat."""
+        weights = self._candidates(room_type)
         chosen: list[str] = []
         names = sorted(weights)
-        while len(chosen) < target:
-            options = [n for n in names if self.cat[n].placement.get("multiple_per_room")
-                       or (n not in chosen and n not in present)]
+        while len(chosen) < count:
+            options = [n for n in names if self._repeats(n) or (n not in chosen and n not in present)]
             if not options:
                 break
             chosen.append(rng.choices(options, weights=[weights[n] for n in options])[0])
@@ -212,3 +244,12 @@ class RoomPlanner:
                 break
             floor.remove(max(droppable, key=lambda o: o.size.x * o.size.z))
         return floor
+
+
+def _poisson(mean: float, rng: random.Random) -> int:
+    """A Poisson draw (Knuth's product of uniforms); 0 for a mean of 0 or less."""
+    k, product, floor = 0, rng.random(), math.exp(-max(mean, 0.0))
+    while product > floor:
+        k += 1
+        product *= rng.random()
+    return k

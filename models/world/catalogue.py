@@ -140,6 +140,13 @@ class Catalogue:
             return self.host(name).rooms.get(spec.ithor, {}).get("presence", 0.0)
         return AUTHORED_ROOM_PRIORS[room_type].get(name, 0.0)
 
+    def room_count(self, name: str, room_type: str) -> float:
+        """How many of the type a room of this type holds when it holds any: the iTHOR mean where measured, else 1."""
+        spec = ROOM_SPECS[room_type]
+        if spec.ithor is not None:
+            return self.host(name).rooms.get(spec.ithor, {}).get("mean_count", 1.0)
+        return 1.0
+
 
 @cache
 def catalogue() -> Catalogue:

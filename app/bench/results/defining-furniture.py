@@ -27,7 +27,7 @@ def lacking(plans) -> str:
 def planned(room: str, defining: bool) -> list:
     graph = TaskGraph.model_validate({"instruction": "Pick up the apple", "room_type": room,
                                       "task_type": "pick_and_place_simple", "objects": [{"type": "Apple", "roles": ["key"]}]})
-    planner = RoomPlanner(RoomPlannerSettings(defining=defining))
+    planner = RoomPlanner(RoomPlannerSettings(as_stored=not defining))
     return [planner.plan(graph, seed) for seed in range(SEEDS)]
 
 
