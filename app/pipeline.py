@@ -19,11 +19,13 @@ from models.language.combined import make_parser
 from models.metrics.placement import AREA_TOL
 from models.placement import PlacementProblem, StepObserver, get_solver
 from models.placement.base import Fixed
+from models.energy.navigation import doors_joined
 from models.placement.stepping import Stepping
 from models.planning import ConstraintWriter, RoomPlanner
 from models.planning.apartment_planner import ApartmentPlanner
 from models.scene import assemble_scene
 from models.scene.apartment import assemble_apartment
+from models.scene.assemble import footprint_boxes
 from models.values import ConstraintPlan, Layout, Placement, RoomPlan, Scene, TaskGraph, Timing
 from models.values.apartment import Apartment
 from models.world import normalise_room_type
@@ -38,6 +40,9 @@ class Generation:
     plan: ConstraintPlan
     layout: Layout
     scene: Scene
+
+
+PASSABLE_TRIES = 4  # layouts tried for an apartment's room until one keeps its doors joined (`place_passable`)
 
 
 class Pipeline:
@@ -80,8 +85,34 @@ class Pipeline:
         graph = self.parse(instruction, None)
         house = ApartmentPlanner(self.planner).plan(graph, rooms, seed=seed, plan_id=f"apartment-{seed}")
         plans = [self.writer.write(rp) for rp in house.room_plans]
-        layouts = [self.place(plan, seed, solver, observer) for plan in plans]
+        layouts = [self.place_passable(plan, seed, solver, observer) for plan in plans]
         return assemble_apartment(house, plans, layouts, graph, seed)
+
+    def place_passable(self, plan: ConstraintPlan, seed: int = 0, solver: str | None = None,
+                       observer: StepObserver | None = None) -> Layout:
+        """`place` for a room of an apartment: the robot may have to cross it from one door to another, which no
+        placer is asked to keep open (Key_NAV asks for the task objects, from any door). While its furniture cuts
+        a door off, the room is placed again with the next seed, up to PASSABLE_TRIES in all; if none keeps its
+        doors joined, the first layout, with a warning. The `observer` sees the kept layout's steps; its timing
+        counts every try."""
+        tries = []
+        for k in range(PASSABLE_TRIES if len(plan.room.doors) > 1 else 1):
+            steps: list = []
+            layout = self.place(plan, seed + k, solver, steps.append if observer else None)
+            tries.append((layout, steps))
+            if doors_joined(plan.room, footprint_boxes(layout.placements)):
+                break
+        else:
+            layout, steps = tries[0]
+            layout = layout.model_copy(update={"warnings": [*layout.warnings, (
+                f"the furniture cuts one of the room's doors off from another in all {len(tries)} layouts tried "
+                f"(seeds {seed}-{seed + len(tries) - 1}): the robot cannot cross the room")]})
+        for step in steps:
+            observer(step)
+        spent = sum(t.timing.total_s for t, _ in tries)
+        scale = spent / layout.timing.total_s if layout.timing.total_s else 1.0
+        timing = Timing(total_s=spent, per_object_s=layout.timing.per_object_s * scale)
+        return layout.model_copy(update={"timing": timing})
 
     def replan(self, gen: Generation, constraints: str, seed: int = 0, solver: str | None = None,
                observer: StepObserver | None = None) -> Generation:

@@ -124,3 +124,39 @@ def test_the_house_json_gives_the_floorplans_walkable_floor(pipeline, two_rooms)
         start = (apartment.robot_start.x, apartment.robot_start.z)
         expected = reachable_from(grid, house_blocked(grid, apartment.floorplan, []), start)
         assert (SymbolicState.from_house(empty).navigation()[1] == expected).all() and expected.sum() > 1000
+
+
+def test_a_room_the_robot_crosses_is_placed_again_until_its_doors_are_joined(two_rooms, pipeline, monkeypatch):
+    """Seed 2's living room joins the entrance to the kitchen and the bedroom; DFS's first layout of it cuts the
+    entrance off (the robot's plan could not reach the mug), the next seed's does not."""
+    import app.pipeline as pipeline_module
+    from models.energy.navigation import doors_joined
+    from models.scene.assemble import footprint_boxes
+
+    apartment, _, plan = two_rooms
+    crossed = [(p, layout) for p, layout in zip(apartment.plans, apartment.layouts) if len(p.room.doors) > 1]
+    assert crossed and all(doors_joined(p.room, footprint_boxes(layout.placements)) for p, layout in crossed)
+    assert any(layout.seed != 2 for _, layout in crossed) and not plan.problems
+
+    monkeypatch.setattr(pipeline_module, "PASSABLE_TRIES", 1)
+    once = pipeline.generate_apartment(LAMP, None, seed=2)
+    cut = [layout for p, layout in zip(once.plans, once.layouts) if len(p.room.doors) > 1
+           and not doors_joined(p.room, footprint_boxes(layout.placements))]
+    assert cut and any("cuts one of the room's doors off" in w for layout in cut for w in layout.warnings)
+    assert apartment_robot_plan(once, apartment_house(once)).problems  # what the robot met before
+
+
+def test_doors_joined_sees_a_wall_of_furniture_between_two_doors():
+    import numpy as np
+
+    from models.energy.navigation import doors_joined
+    from models.values import Room
+    from models.values.room import Opening
+
+    door = dict(width=1.0, asset_id="Doorway_2", height=2.07, sill=0.0)
+    room = Room(type="living room", width=4, depth=4, doors=[Opening(wall="west", center=2.0, **door),
+                                                               Opening(wall="east", center=2.0, **door)])
+    assert doors_joined(room, np.zeros((0, 4)))
+    assert not doors_joined(room, np.array([[1.8, 0.0, 2.2, 4.0]]))  # a shelf from wall to wall
+    assert doors_joined(room, np.array([[1.8, 0.0, 2.2, 3.0]]))  # a metre left free at the north wall
+    assert doors_joined(room.model_copy(update={"doors": room.doors[:1]}), np.array([[1.8, 0.0, 2.2, 4.0]]))

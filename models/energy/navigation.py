@@ -84,6 +84,18 @@ def door_cells(grid: Grid, room: Room) -> np.ndarray:
     return start
 
 
+def doors_joined(room: Room, boxes: np.ndarray) -> bool:
+    """Whether the robot can walk from each of the room's doors to every other past the objects' boxes (M, 4): a
+    room it crosses on its way to the next one."""
+    grid = Grid(room.width, room.depth)
+    blocked = blocked_by_boxes(grid, boxes)
+    doors = [in_box_mask(grid, box) & ~blocked for box in door_boxes(room)]
+    if len(doors) < 2:
+        return True
+    reach = reachable_from(blocked, doors[0])
+    return all((reach & d).any() for d in doors[1:])
+
+
 def reachable_space(grid: Grid, blocked: np.ndarray, room: Room) -> np.ndarray:
     """Free cells connected to a free cell of some doorway."""
     return reachable_from(blocked, door_cells(grid, room))

@@ -102,12 +102,13 @@ class RoomPlanner:
             keep = {add_floor(t, "context").id for t in ROOM_SPECS[room_type].defining if t not in brought}
             drawn = self._draw_context(room_type, rng, Counter(o.type for o in floor))
             context = [t for t in drawn if t not in GROUP_MEMBER_TYPES]
-            members = [t for t in drawn if t in GROUP_MEMBER_TYPES]  # after the groups, which may bring them
+            members = [t for t in drawn if t in GROUP_MEMBER_TYPES]  # furnish the groups first, the rest after
         for type_name in context:
             add_floor(type_name, "context")
         grouped: Counter[str] = Counter()
+        budget = Counter(members) if ROOM_SPECS[room_type].ithor and not self.settings.as_stored else None
         for root in list(floor):
-            for member in self._group_members(root.type, room_type, rng):
+            for member in self._group_members(root.type, room_type, rng, budget):
                 grouped[add_floor(member, "context").type] += 1
         for type_name in members:
             if grouped[type_name]:
@@ -151,8 +152,9 @@ class RoomPlanner:
 
     def _draw_context(self, room_type: str, rng: random.Random, present: Counter[str]) -> list[str]:
         """Each candidate type with its chance of being in such a room, then as many of it as such rooms hold (1 plus
-        a Poisson draw with the iTHOR mean's excess), less those already there; kept within [min_context,
-        max_context]: the first of each type before any second, topped up by frequency when short."""
+        a Poisson draw with the iTHOR mean's excess), less those already there. At most max_context pieces besides
+        the chairs, lamps, armchairs and sofas (which groups seat; as many as drawn), the first of each type before any
+        second; topped up by frequency below min_context."""
         weights = self._candidates(room_type)
         drawn: list[tuple[int, float, str]] = []
         for name in sorted(weights):
@@ -160,7 +162,9 @@ class RoomPlanner:
                 continue
             extra = _poisson(self.cat.room_count(name, room_type) - 1, rng) if self._repeats(name) else 0
             drawn += [(k, rng.random(), name) for k in range(present[name], 1 + extra)]
-        chosen = [name for _, _, name in sorted(drawn)[:self.settings.max_context]]
+        ordered = [name for _, _, name in sorted(drawn)]
+        chosen = [n for n in ordered if n not in GROUP_MEMBER_TYPES][:self.settings.max_context]
+        chosen += [n for n in ordered if n in GROUP_MEMBER_TYPES]
         short = self.settings.min_context - len(chosen)
         return chosen + self._fill(room_type, rng, set(present) | set(chosen), short)
 
@@ -185,7 +189,11 @@ class RoomPlanner:
             chosen.append(rng.choices(options, weights=[weights[n] for n in options])[0])
         return chosen
 
-    def _group_members(self, root: str, room_type: str, rng: random.Random) -> list[str]:
+    def _group_members(self, root: str, room_type: str, rng: random.Random,
+                       budget: Counter[str] | None = None) -> list[str]:
+        """The chairs, lamps... of a ProcTHOR group anchored by `root`, or none. With a `budget` (the members drawn
+        for the room, used up here), the largest group it furnishes, so that a kitchen's table does not bring six
+        chairs where iTHOR kitchens hold 0.7; without, any group of the room type."""
         ithor_key = {"kitchen": "kitchens", "living room": "livingRooms", "bedroom": "bedrooms",
                      "bathroom": "bathrooms"}.get(room_type)
         options = [g for g in self.groups.values() if g["members"][0]["type"] == root
@@ -193,8 +201,15 @@ class RoomPlanner:
                    and any(m["type"] in GROUP_MEMBER_TYPES for m in g["members"][1:])]
         if not options or rng.random() > self.settings.group_chance:
             return []
-        group = rng.choice(sorted(options, key=lambda g: len(g["members"])))
-        return [m["type"].split("-")[0] for m in group["members"][1:] if m["type"].split("-")[0] in GROUP_MEMBER_TYPES]
+        if budget is None:
+            return _members(rng.choice(sorted(options, key=lambda g: len(g["members"]))))
+        fitting = [_members(g) for g in options if not Counter(_members(g)) - budget]
+        if not fitting:
+            return []
+        largest = max(len(m) for m in fitting)
+        chosen = rng.choice(sorted(m for m in fitting if len(m) == largest))
+        budget.subtract(chosen)
+        return chosen
 
     def _accepts(self, parent_type: str, child: str) -> float:
         return self.cat.host(parent_type).contents.get(child, 0.0)
@@ -244,6 +259,10 @@ class RoomPlanner:
                 break
             floor.remove(max(droppable, key=lambda o: o.size.x * o.size.z))
         return floor
+
+
+def _members(group: dict) -> list[str]:
+    return [m["type"].split("-")[0] for m in group["members"][1:] if m["type"].split("-")[0] in GROUP_MEMBER_TYPES]
 
 
 def _poisson(mean: float, rng: random.Random) -> int:

@@ -9,9 +9,9 @@ from __future__ import annotations
 
 from models.energy.house_navigation import house_navigation
 from models.geometry import Footprint
-from models.scene.assemble import assemble_scene
+from models.scene.assemble import assemble_scene, inside_door
 from models.values import AgentPose, ConstraintPlan, Layout, SceneObject, TaskGraph, Unplaced
-from models.values.apartment import OUTSIDE, Apartment, HousePlan, HouseRoom
+from models.values.apartment import OUTSIDE, Apartment, Doorway, HousePlan, HouseRoom
 
 VISIT_ORDER = {"key": 0, "inference": 1, "anchor": 2}
 
@@ -24,6 +24,14 @@ def shifted(obj: SceneObject, hr: HouseRoom) -> SceneObject:
 
 def house_pose(pose: AgentPose, hr: HouseRoom) -> AgentPose:
     return pose.model_copy(update={"x": round(pose.x + hr.x, 4), "z": round(pose.z + hr.z, 4)})
+
+
+def entrance_start(hr: HouseRoom, entrance: Doorway) -> AgentPose:
+    """Just inside the apartment's entrance, facing in (a room's own start may be by a door between rooms)."""
+    mid = (entrance.x0 + entrance.center, entrance.z0) if entrance.z0 == entrance.z1 else \
+        (entrance.x0, entrance.z0 + entrance.center)
+    starts = [house_pose(inside_door(hr.room, k), hr) for k in range(len(hr.room.doors))]
+    return min(starts, key=lambda p: abs(p.x - mid[0]) + abs(p.z - mid[1]))
 
 
 def house_objects(apartment: Apartment) -> list[SceneObject]:
@@ -47,7 +55,7 @@ def assemble_apartment(plan: HousePlan, plans: list[ConstraintPlan], layouts: li
               for hr, rp, cp, layout in zip(rooms, plan.room_plans, plans, layouts)]
     entrance = next(d for d in plan.floorplan.doors if d.id == plan.floorplan.entrance)
     first = next(i for i, hr in enumerate(rooms) if hr.id in entrance.rooms and hr.id != OUTSIDE)
-    start = house_pose(scenes[first].robot_start, rooms[first])
+    start = entrance_start(rooms[first], entrance)
     footprints = {p.id: Footprint(p.x + hr.x, p.z + hr.z, p.size.x, p.size.z, p.rotation)
                   for hr, layout in zip(rooms, layouts) for p in layout.placements}
     navigation = house_navigation(plan.floorplan, footprints, visit_order(plans), (start.x, start.z))

@@ -77,7 +77,7 @@ def _far_from_reach(room: Room, placements: Sequence[Placement]) -> Callable[[fl
     """Distance from a point of the room to the nearest free cell the robot reaches from a door (Key_NAV's grid,
     objects as axis-aligned boxes); infinite when it reaches none."""
     grid = nav.Grid(room.width, room.depth)
-    blocked = nav.blocked_by_boxes(grid, _boxes(placements))
+    blocked = nav.blocked_by_boxes(grid, footprint_boxes(placements))
     reach = nav.reachable_space(grid, blocked, room)
     if not reach.any():
         return lambda x, z: float("inf")
@@ -108,7 +108,12 @@ def robot_start(plan: RoomPlan, objects: Sequence[SceneObject] = ()) -> AgentPos
     room = plan.room
     if not room.doors:
         return AgentPose(x=room.width / 2, z=room.depth / 2, rotation=0)
-    d = room.doors[_entry(room, objects)]
+    return inside_door(room, _entry(room, objects))
+
+
+def inside_door(room: Room, k: int) -> AgentPose:
+    """Just inside the room's door `k`, facing in."""
+    d = room.doors[k]
     return {"south": AgentPose(x=d.center, z=ROBOT_INSET, rotation=0),
             "north": AgentPose(x=d.center, z=room.depth - ROBOT_INSET, rotation=180),
             "west": AgentPose(x=ROBOT_INSET, z=d.center, rotation=90),
@@ -121,8 +126,8 @@ def _entry(room: Room, objects: Sequence[SceneObject]) -> int:
     if len(room.doors) < 2 or not objects:
         return 0
     grid = nav.Grid(room.width, room.depth)
-    blocked = nav.blocked_by_boxes(grid, _boxes(objects))
-    tasks = _boxes([o for o in objects if o.role != "context"] + [c for o in objects for c in o.children
+    blocked = nav.blocked_by_boxes(grid, footprint_boxes(objects))
+    tasks = footprint_boxes([o for o in objects if o.role != "context"] + [c for o in objects for c in o.children
                                                                   if c.role != "context"])
     gx, gz = grid.mesh()
     near = [np.hypot(np.maximum(0, np.maximum(b[0] - gx, gx - b[2])), np.maximum(0, np.maximum(b[1] - gz, gz - b[3])))
@@ -135,7 +140,7 @@ def _entry(room: Room, objects: Sequence[SceneObject]) -> int:
     return max(range(len(room.doors)), key=score)
 
 
-def _boxes(objects: Sequence[SceneObject | Placement]) -> np.ndarray:
+def footprint_boxes(objects: Sequence[SceneObject | Placement]) -> np.ndarray:
     """(N, 4) axis-aligned boxes [xmin, zmin, xmax, zmax] around the objects' footprints."""
     return boxes([o.x for o in objects], [o.z for o in objects], [o.size.x for o in objects],
                  [o.size.z for o in objects], [o.rotation for o in objects]).reshape(-1, 4)
