@@ -92,8 +92,9 @@ def _count_messages(session) -> list:
     return sent
 
 
-def first_render(browser, studio, baseline: bool) -> dict:
-    """One fresh tab, one Generate: seconds to the status line and to the drawn scene, and what was sent."""
+def first_render(browser, studio, baseline: bool, n_objects: int) -> dict:
+    """One fresh tab, one Generate of the studio's default task (`n_objects` objects): seconds to the status line
+    and to the drawn scene, and what was sent."""
     page = browser.new_page(viewport={"width": 1400, "height": 900})
     before = set(studio.sessions)
     page.goto(f"http://127.0.0.1:{studio.port}")
@@ -104,7 +105,6 @@ def first_render(browser, studio, baseline: bool) -> dict:
         session.client.scene.configure_default_lights(True, cast_shadow=True)
     page.wait_for_timeout(500)
     sent = _count_messages(session)
-    n_objects = 12  # "Put a chilled bread on the counter" in a kitchen, seed 0
     page.evaluate(WATCH_JS, n_objects)
     t0 = time.perf_counter()
     page.get_by_role("button", name="Generate").click()
@@ -134,6 +134,7 @@ def main(args) -> int:
     from playwright.sync_api import sync_playwright
 
     from frontend.server import Studio
+    from frontend.session import DEFAULT_INSTRUCTION
     from studio_db import Store
 
     items = pick_instructions(args.n)
@@ -151,6 +152,7 @@ def main(args) -> int:
         t0 = time.perf_counter()
         pipeline.replace_around(moved, [dragged(moved)], seed=i)
         bare_around.append(time.perf_counter() - t0)
+    n_default = len(pipeline.generate(DEFAULT_INSTRUCTION, "kitchen", seed=0).scene.all_objects())  # a tab's first
     with tempfile.TemporaryDirectory() as tmp:
         studio = Studio("127.0.0.1", 28080, Store(f"sqlite:///{tmp}/bench.db"), pipeline)
         with sync_playwright() as p:
@@ -158,7 +160,7 @@ def main(args) -> int:
             fresh = {False: [], True: []}
             for k in range(2 * FRESH_TABS):
                 baseline = bool(k % 2)
-                fresh[baseline].append(first_render(browser, studio, baseline))
+                fresh[baseline].append(first_render(browser, studio, baseline, n_default))
             page = studio_page(browser, studio)
             waits, around = [], []
             for i, (text, room) in enumerate(items):

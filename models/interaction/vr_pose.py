@@ -137,7 +137,7 @@ def vr_start_pose(scene: Scene, graph: TaskGraph | None = None) -> VRPoseChoice:
         for k in range(N_DIRECTIONS):
             angle = 360.0 * k / N_DIRECTIONS
             dx, dz = front(angle)
-            px, pz = anchor.x + ring * dx, anchor.z + ring * dz
+            px, pz = round(anchor.x + ring * dx, 3), round(anchor.z + ring * dz, 3)  # checked as the pose keeps it
             reason = _rejection(px, pz, room.width, room.depth, floor, others, face, front_only, fx, fz, holder,
                                 target)
             if reason is not None:
@@ -146,7 +146,7 @@ def vr_start_pose(scene: Scene, graph: TaskGraph | None = None) -> VRPoseChoice:
             heading = math.degrees(math.atan2(target[0] - px, target[2] - pz)) % 360
             flat = math.hypot(target[0] - px, target[2] - pz)
             horizon = math.degrees(math.atan2(EYE_HEIGHT - target[1], flat))
-            pose = AgentPose(x=round(px, 3), z=round(pz, 3), rotation=round(heading, 1), horizon=round(horizon, 1))
+            pose = AgentPose(x=px, z=pz, rotation=round(heading, 1), horizon=round(horizon, 1))
             valid.append(VRCandidate(pose=pose, distance_to_room_centre=round(math.hypot(px - centre[0], pz - centre[1]), 4),
                                      distance_to_anchor_front=round(face.distance(Point(px, pz)), 4), angle=angle))
         tried += N_DIRECTIONS

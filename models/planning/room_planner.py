@@ -41,7 +41,7 @@ class RoomPlannerSettings:
     surface_items: float = 0.5  # expected context items per open surface
     group_chance: float = 0.8
     # build rooms as the stored datasets were built: no defining furniture (rooms.RoomSpec.defining), and a count of
-    # context pieces drawn first and filled by frequency, repeats allowed (a bedroom got 2 beds on average, 4 at most)
+    # context pieces drawn first and filled by frequency, repeats allowed (bathrooms got 1.1 side tables, iTHOR's 0.2)
     as_stored: bool = False
 
 
