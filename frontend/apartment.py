@@ -92,13 +92,14 @@ class ApartmentMode:
         s.say(f"Saved as scene {sid}, version {number} (“{name}”): an apartment of {len(a.scenes)} rooms.")
 
     def open(self, apartment: Apartment, scene_id: int, number: int, stored: dict) -> None:
-        """Show a stored apartment; the Placement tab replays each room's placer with the stored seed and
-        solver (the stored poses stay what is shown)."""
+        """Show a stored apartment; the Placement tab replays each room's placer with the stored solver and the
+        seed its layout kept (a room the robot crosses may have been placed again with the next seed; the stored
+        poses stay what is shown)."""
         s = self.session
         steps: list[PlacementStep] = []
         with contextlib.suppress(Exception):  # a solver that no longer exists: the apartment opens without replay
-            for plan in apartment.plans:
-                s.pipeline.place(plan, int(s.seed.value), s.solver.value, s.observer(steps))
+            for plan, layout in zip(apartment.plans, apartment.layouts):
+                s.pipeline.place(plan, layout.seed, s.solver.value, s.observer(steps))
         self.show(apartment, steps, scene_id=scene_id)
         s.set_unsaved(False)
         s.instruction.value = apartment.task_graph.instruction
