@@ -30,6 +30,9 @@ def render(graph: TaskGraph, width_px: int = 480, height_px: int = 300) -> np.nd
     pos = {}
     if target is not None:
         pos[target] = (-0.9, 0.0)
+    if len(others) == 1 and target is None:  # a lone object (no relation): in the middle
+        pos[others[0].type] = (0.0, 0.0)
+        others = []
     for i, o in enumerate(others):
         angle = math.pi / 2 - math.pi * (i + 0.5) / max(len(others), 1) if target else 2 * math.pi * i / len(others)
         pos[o.type] = (0.2 + 1.0 * math.cos(angle), 0.95 * math.sin(angle))

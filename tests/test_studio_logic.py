@@ -303,3 +303,28 @@ def test_the_energy_plot_of_an_apartment_sums_its_rooms_solved_one_after_another
     switch = next(k for k, s in enumerate(steps) if ApartmentMode.room_of(s.object_id) != first)
     assert abs(rows[switch - 1]["total"] - finals[0]) < 1e-9  # the first room done, the second all to come
     assert energy_after_steps([], steps) == []
+
+
+def test_the_task_graph_picture_puts_a_lone_object_in_the_middle_and_the_target_on_the_left():
+    import numpy as np
+
+    from frontend.graph_image import render
+    from models.exports.glb import ROLE_COLOURS
+    from models.values import TaskGraph
+
+    def centre_x(image, role: str) -> float:
+        colour = np.array(ROLE_COLOURS[role][:3])
+        xs = np.nonzero((np.abs(image.astype(int) - colour).sum(axis=2) < 12))[1]
+        assert xs.size, role
+        return xs.mean() / image.shape[1]
+
+    lone = TaskGraph.model_validate({"instruction": "Turn on the lamp", "room_type": "bedroom", "task_type":
+                                     "look_at_obj_in_light", "objects": [{"type": "DeskLamp", "roles": ["key", "anchor"]}]})
+    assert abs(centre_x(render(lone), "anchor") - 0.5) < 0.05
+    placed = TaskGraph.model_validate({"instruction": "Put the apple on the table", "room_type": "kitchen",
+                                       "task_type": "pick_and_place_simple",
+                                       "objects": [{"type": "Apple", "roles": ["key"]},
+                                                   {"type": "DiningTable", "roles": ["key", "anchor"]}],
+                                       "relations": [["Apple", "placed_at", "DiningTable"]]})
+    image = render(placed)
+    assert centre_x(image, "key") < 0.35 < 0.6 < centre_x(image, "anchor")
