@@ -28,6 +28,8 @@ GROUP_MEMBER_TYPES = {"Chair", "FloorLamp", "ArmChair", "Sofa"}
 # Receptacles where an object starts when it must be picked up: open surfaces people reach easily.
 OPEN_SURFACES = ("CounterTop", "DiningTable", "SideTable", "Desk", "CoffeeTable", "Dresser", "ShelvingUnit",
                  "Bed", "Sofa", "ArmChair", "Sink", "Toilet")
+# Chairs no table or desk seats: iTHOR rooms without either hold 0.6 (living rooms), 0.57 (kitchens), 0 (bedrooms)
+LONE_MEMBERS = {"Chair": 1}
 FLOOR_FILL_LIMIT = 0.42  # share of the floor that furniture footprints may cover
 
 
@@ -110,10 +112,12 @@ class RoomPlanner:
         for root in list(floor):
             for member in self._group_members(root.type, room_type, rng, budget):
                 grouped[add_floor(member, "context").type] += 1
+        alone: Counter[str] = Counter()
         for type_name in members:
             if grouped[type_name]:
                 grouped[type_name] -= 1
-            else:
+            elif alone[type_name] < LONE_MEMBERS.get(type_name, len(members)):
+                alone[type_name] += 1
                 add_floor(type_name, "context")
 
         # 3. surface objects: task objects first (the manipulated one away from its destination)
