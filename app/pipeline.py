@@ -13,13 +13,13 @@ from collections.abc import Collection
 from dataclasses import dataclass
 from pathlib import Path
 
+from models.energy.navigation import doors_joined
 from models.geometry import Footprint, overlap_area
 from models.language import InstructionParser
 from models.language.combined import make_parser
 from models.metrics.placement import AREA_TOL
 from models.placement import PlacementProblem, StepObserver, get_solver
 from models.placement.base import Fixed
-from models.energy.navigation import doors_joined
 from models.placement.stepping import Stepping
 from models.planning import ConstraintWriter, RoomPlanner
 from models.planning.apartment_planner import ApartmentPlanner
