@@ -1,6 +1,6 @@
 """How often a room lacks the furniture that makes it its type (`RoomSpec.defining`: a bedroom's bed, a kitchen's
 fridge and counter...): in the stored constraint datasets (built without the rule, kept so) and in rooms the room
-planner makes for a one-object task, seeds 0-199, with the rule (the default) and without it. Writes
+planner makes for a one-object task, seeds 0-199, with the rule (the default) and without it (`as_stored`). Writes
 defining-furniture.txt beside this script:  PYTHONPATH=. python app/bench/results/defining-furniture.py"""
 
 from pathlib import Path
