@@ -129,3 +129,24 @@ def test_planned_rooms_hold_each_type_about_as_often_as_ithor_rooms():
         now, stored = mean(RoomPlanner()), mean(RoomPlanner(RoomPlannerSettings(as_stored=True)))
         assert abs(now - ithor) < 0.3, (room, name, now, ithor)
         assert abs(now - ithor) < abs(stored - ithor), (room, name, now, stored, ithor)
+
+
+def test_chairs_no_table_or_desk_seats_stand_alone_one_at_most():
+    """iTHOR rooms without a table or desk hold 0.6 chairs at most (living rooms); the stored sets' rule put a flock
+    of chairs in the middle of such a room."""
+    from collections import Counter
+
+    from models.planning import RoomPlanner
+    from models.planning.room_planner import RoomPlannerSettings
+    from models.values import TaskGraph
+
+    graph = TaskGraph.model_validate({"instruction": "Pick up the apple", "room_type": "living room", "task_type":
+                                      "pick_and_place_simple", "objects": [{"type": "Apple", "roles": ["key"]}]})
+
+    def lone_chairs(planner) -> list[int]:
+        rooms = [Counter(o.type for o in planner.plan(graph, s).objects) for s in range(60)]
+        return [c["Chair"] for c in rooms if not c["DiningTable"] and not c["Desk"]]
+
+    now, stored = lone_chairs(RoomPlanner()), lone_chairs(RoomPlanner(RoomPlannerSettings(as_stored=True)))
+    assert now and max(now) <= 1 and any(now)
+    assert max(stored) > 1

@@ -116,7 +116,7 @@ class RoomPlanner:
         for type_name in members:
             if grouped[type_name]:
                 grouped[type_name] -= 1
-            elif alone[type_name] < LONE_MEMBERS.get(type_name, len(members)):
+            elif type_name not in LONE_MEMBERS or alone[type_name] < LONE_MEMBERS[type_name]:
                 alone[type_name] += 1
                 add_floor(type_name, "context")
 
