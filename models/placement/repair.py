@@ -107,11 +107,12 @@ def make_room(ep: Episode, observer: StepObserver | None = None) -> list[str]:
 
 def _suspects(ep: Episode, now: Standing, out: list[str], free: list) -> list[str]:
     """The movable objects (other than `out`) most likely walling off the task objects `out`: first those
-    whose removal alone lets the robot reach more of them (most first), then the others, nearest first."""
-    pos = {p.id: p for p in ep.placed}
+    whose removal alone lets the robot reach more of them (most first), then the others, nearest first (a crossed
+    room's door out of reach is where its doorway is)."""
+    pos = {p.id: (p.x, p.z) for p in ep.placed} | now.reach.gate_centres
     others = [p for p in free if p.id not in out]
     freed = {p.id: len(out) - len(now.reach.unreachable([q for q in ep.placed if q is not p])) for p in others}
-    near = {p.id: min(abs(p.x - pos[o].x) + abs(p.z - pos[o].z) for o in out) for p in others}
+    near = {p.id: min(abs(p.x - pos[o][0]) + abs(p.z - pos[o][1]) for o in out) for p in others}
     return sorted(freed, key=lambda i: (-freed[i], near[i]))
 
 

@@ -225,7 +225,7 @@ class SlicingFloorplan:
             rid = f"room|{i + 1}"
             x0, z0, x1, z1 = bounds[rid]
             room = Room(**{**shell.model_dump(), "width": round(x1 - x0, 3), "depth": round(z1 - z0, 3),
-                           **openings[rid]})
+                           **openings[rid], "crossed": len(openings[rid]["doors"]) > 1 or None})
             rooms.append(HouseRoom(id=rid, room=room, x=x0, z=z0))
         return Floorplan(rooms=rooms, doors=doors, entrance=doors[0].id,
                          provenance=Provenance(stage="floorplan", method=self.name, seed=seed))

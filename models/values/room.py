@@ -31,6 +31,7 @@ class Room(Value):
     wall_height: float | None = None
     floor_material: str | None = None
     wall_material: str | None = None
+    crossed: bool | None = None  # True: the robot walks through it door to door (an apartment's); keep them joined
 
     def wall_length(self, wall: str) -> float:
         return self.width if wall in ("south", "north") else self.depth

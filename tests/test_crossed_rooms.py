@@ -1,0 +1,65 @@
+"""Rooms the robot crosses (`Room.crossed`: an apartment's rooms with several doors): the floorplan marks them, and
+a placer's reach guard and repairs keep their doors joined, counting a door cut off like a task object out of
+reach; other rooms are judged as before."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from models.datasets import load_dataset
+from models.placement.candidates import PlacedObject
+from models.placement.problem import PlacementProblem
+from models.placement.reach import Reach
+from models.values import Room
+from models.values.room import Opening
+
+DOOR = dict(width=1.0, asset_id="Doorway_2", height=2.07, sill=0.0)
+ROOM = Room(type="living room", width=4, depth=4, doors=[Opening(wall="west", center=2.0, **DOOR),
+                                                         Opening(wall="east", center=2.0, **DOOR)], crossed=True)
+
+
+def shelf(zmax: float) -> PlacedObject:
+    """A shelf across the room from the south wall to `zmax`."""
+    return PlacedObject("shelf", 2.0, zmax / 2, 0.0, 0.4, zmax, np.array([1.8, 0.0, 2.2, zmax]), None)
+
+
+def reach(room: Room) -> Reach:
+    plan = next(iter(load_dataset("seen"))).plan
+    return Reach(PlacementProblem.from_plan(plan.model_copy(update={"room": room})))
+
+
+def test_a_door_cut_off_counts_out_of_reach_in_a_crossed_room_only():
+    crossed, plain = reach(ROOM), reach(ROOM.model_copy(update={"crossed": None}))
+    assert crossed.unreachable([shelf(4.0)]) == ["door|1"] and crossed.unreachable([shelf(3.0)]) == []
+    assert plain.unreachable([shelf(4.0)]) == []  # a room not crossed: either door will do
+    one_door = reach(ROOM.model_copy(update={"doors": ROOM.doors[:1]}))
+    assert one_door.unreachable([shelf(4.0)]) == [] and not one_door.gates
+    # the reach guard refuses the wall between the doors in the crossed room, not in the other
+    blocked = crossed.blocked([])
+    reachable = np.ones_like(blocked)  # an energy set-up's grid (from every door): the crossed room floods its own
+    assert list(crossed.keeping([], [shelf(4.0), shelf(3.0)], blocked, reachable)) == [False, True]
+    assert list(plain.keeping([], [shelf(4.0)], blocked, reachable)) == [True]
+    assert crossed.gate_centres == {"door|1": (3.7, 2.0)}  # where the repairs look for objects in the way
+
+
+def test_the_floorplan_marks_the_rooms_with_several_doors_as_crossed(pipeline):
+    apartment = pipeline.generate_apartment("Put a chilled bread on the counter", None, seed=3)
+    rooms = [plan.room for plan in apartment.plans]
+    assert any(r.crossed for r in rooms) and all(bool(r.crossed) == (len(r.doors) > 1) for r in rooms)
+
+
+def test_plan2place_keeps_a_crossed_living_room_s_doors_joined_at_the_first_layout(monkeypatch):
+    """Apartment 7 of `bench generate --room-type apartment`: without the flag, Plan2Place's living room (3.65 x
+    5.05 m, 13 objects) cuts a door off from the other in every seed tried; with it, the first layout joins them."""
+    import app.pipeline as pipeline_module
+    from app.pipeline import Pipeline
+    from models.energy.navigation import doors_joined
+    from models.scene.assemble import footprint_boxes
+
+    monkeypatch.setattr(pipeline_module, "PASSABLE_TRIES", 1)
+    pipeline = Pipeline(solver="plan2place")
+    apartment = pipeline.generate_apartment("Place a watch inside of the safe", None, seed=7)
+    plan, layout = next((p, la) for p, la in zip(apartment.plans, apartment.layouts) if p.room.type == "living room")
+    assert plan.room.crossed and doors_joined(plan.room, footprint_boxes(layout.placements)) and not layout.warnings
+    unflagged = plan.model_copy(update={"room": plan.room.model_copy(update={"crossed": None})})
+    assert not doors_joined(plan.room, footprint_boxes(pipeline.place(unflagged, layout.seed).placements))
