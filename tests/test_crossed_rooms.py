@@ -54,6 +54,7 @@ def test_plan2place_keeps_a_crossed_living_room_s_doors_joined_at_the_first_layo
     import app.pipeline as pipeline_module
     from app.pipeline import Pipeline
     from models.energy.navigation import doors_joined
+    from models.placement.greedy import WALLS_OFF_DOOR
     from models.scene.assemble import footprint_boxes
 
     monkeypatch.setattr(pipeline_module, "PASSABLE_TRIES", 1)
@@ -61,5 +62,11 @@ def test_plan2place_keeps_a_crossed_living_room_s_doors_joined_at_the_first_layo
     apartment = pipeline.generate_apartment("Place a watch inside of the safe", None, seed=7)
     plan, layout = next((p, la) for p, la in zip(apartment.plans, apartment.layouts) if p.room.type == "living room")
     assert plan.room.crossed and doors_joined(plan.room, footprint_boxes(layout.placements)) and not layout.warnings
+    steps = []
+    assert pipeline.place(plan, layout.seed, observer=steps.append).placements == layout.placements
+    assert WALLS_OFF_DOOR in [s.why for s in steps]  # the studio says why a step took another pose
     unflagged = plan.model_copy(update={"room": plan.room.model_copy(update={"crossed": None})})
-    assert not doors_joined(plan.room, footprint_boxes(pipeline.place(unflagged, layout.seed).placements))
+    steps = []
+    assert not doors_joined(plan.room, footprint_boxes(pipeline.place(unflagged, layout.seed, observer=steps.append)
+                                                       .placements))
+    assert WALLS_OFF_DOOR not in [s.why for s in steps]

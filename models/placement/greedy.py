@@ -30,6 +30,7 @@ from models.values import ConstraintPlan, Layout, PlanObject
 
 GUARD_TRIES = 48  # Episode.guarded: candidates tried, most wanted first (Plan2Place's subset is 48)
 WALLS_OFF = "its most wanted pose would wall off a task object from the robot"  # a guarded step's reason
+WALLS_OFF_DOOR = "its most wanted pose would wall off a task object or a door from the robot"  # a crossed room's
 
 
 @dataclass
@@ -105,6 +106,11 @@ class Episode:
     @cached_property
     def reach(self) -> Reach:
         return Reach(self.problem)
+
+    @property
+    def walls_off(self) -> str:
+        """A guarded step's reason (a crossed room's doors are guarded too)."""
+        return WALLS_OFF_DOOR if self.reach.gates else WALLS_OFF
 
     @property
     def done(self) -> bool:
@@ -248,7 +254,7 @@ class GreedySolver:
         total = tie_broken(opts, rng)
         pick, why = int(np.argmin(total)), ""
         if self.guard and pick != (guarded := ep.guarded(opts, np.argsort(total, kind="stable"))):
-            pick, why = guarded, WALLS_OFF
+            pick, why = guarded, ep.walls_off
         probs = np.exp(-(total - total.min()) / 0.05)
         return pick, probs / probs.sum(), why
 

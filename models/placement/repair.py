@@ -15,7 +15,8 @@ models.placement.groups and models.placement.habits.
   unreachable task object or one of `NEAR` others (first those whose removal alone reaches more task
   objects, wherever they stand, then the nearest to the unreachable ones), each tried at its `CHECKS` legal
   poses of lowest energy (hard filters as when placing, the others where they are); the move that
-  leaves the fewest task objects out of reach, lowest energy first, is kept if it reaches more of them.
+  leaves the fewest task objects out of reach, lowest energy first, is kept if it reaches more of them. In a
+  room the robot crosses, a door it cannot reach counts as a task object out of reach (models.placement.reach).
 """
 
 from __future__ import annotations
@@ -33,6 +34,7 @@ from models.placement.result import NO_ROOM
 from models.placement.ties import steady
 
 ROUNDS, NEAR, CHECKS = 3, 4, 40  # restore_access
+CLEARING = "clearing the robot's way to the task objects"  # a restore_access move's reason (" and doors": crossed room)
 
 
 def _best_move(ep: Episode, now: Standing, oid: str) -> Move | None:
@@ -52,7 +54,8 @@ def _best_move(ep: Episode, now: Standing, oid: str) -> Move | None:
         left = now.reach.out_with(others, setup.blocked, pose)
         if left < now.out and (best is None or left < best.out):
             judged = exactly(setup, obj, cands, legal, terms, int(k))
-            step = move_step(oid, pose, cands, legal, int(k), judged, "clearing the robot's way to the task objects")
+            why = CLEARING + (" and doors" if now.reach.gates else "")
+            step = move_step(oid, pose, cands, legal, int(k), judged, why)
             best = Move([pose if p.id == oid else p for p in ep.placed], [step], float(judged["total"][k]), left,
                         lambda pose=pose: setup.after(pose))
             if left == 0:

@@ -18,7 +18,7 @@ from pathlib import Path
 import numpy as np
 
 from models.placement.base import Fixed, StepObserver
-from models.placement.greedy import WALLS_OFF, Episode, Options, place_stepwise
+from models.placement.greedy import Episode, Options, place_stepwise
 from models.placement.plan2place.features import ENERGY_GAP, Observation, choose_subset, observe
 from models.values import ConstraintPlan
 
@@ -157,7 +157,7 @@ def place(policy: Policy, plan: ConstraintPlan, rng: np.random.Generator, use_gl
         probs[subset] = p / p.sum()
         pick = int(subset[a])
         if guard and pick != (guarded := ep.guarded(opts, subset[np.argsort(-logits, kind="stable")])):
-            return guarded, probs, WALLS_OFF
+            return guarded, probs, ep.walls_off
         return pick, probs, ""
 
     return place_stepwise(plan, rng, choose, fixed, observer, repair, keep_reach)
