@@ -159,7 +159,7 @@ def test_robot_starts_by_the_entrance_and_the_vr_user_in_the_anchor_s_room(sever
         door = next(d for d in apartment.floorplan.doors if d.id == apartment.floorplan.entrance)
         hr = apartment.floorplan.room(next(r for r in door.rooms if r != OUTSIDE))
         assert _room_of(apartment, apartment.robot_start.x, apartment.robot_start.z) == hr
-        mid = ((door.x0 + door.center, door.z0) if door.z0 == door.z1 else (door.x0, door.z0 + door.center))
+        mid = door.middle
         assert abs(apartment.robot_start.x - mid[0]) + abs(apartment.robot_start.z - mid[1]) <= 0.61
         if apartment.vr_anchor is not None:
             assert _room_of(apartment, apartment.vr_anchor.x, apartment.vr_anchor.z).id == apartment.anchor_room

@@ -28,8 +28,7 @@ def house_pose(pose: AgentPose, hr: HouseRoom) -> AgentPose:
 
 def entrance_start(hr: HouseRoom, entrance: Doorway) -> AgentPose:
     """Just inside the apartment's entrance, facing in (a room's own start may be by a door between rooms)."""
-    mid = (entrance.x0 + entrance.center, entrance.z0) if entrance.z0 == entrance.z1 else \
-        (entrance.x0, entrance.z0 + entrance.center)
+    mid = entrance.middle
     starts = [house_pose(inside_door(hr.room, k), hr) for k in range(len(hr.room.doors))]
     return min(starts, key=lambda p: abs(p.x - mid[0]) + abs(p.z - mid[1]))
 

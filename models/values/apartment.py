@@ -51,6 +51,11 @@ class Doorway(Value):
     width: float = Field(gt=0)
     asset_id: str
 
+    @property
+    def middle(self) -> tuple[float, float]:
+        """The door's middle (x, z) in the house frame."""
+        return (self.x0 + self.center, self.z0) if self.z0 == self.z1 else (self.x0, self.z0 + self.center)
+
 
 class Floorplan(Value):
     rooms: list[HouseRoom]
