@@ -48,7 +48,8 @@ def test_the_floorplan_marks_the_rooms_with_several_doors_as_crossed(pipeline):
     assert any(r.crossed for r in rooms) and all(bool(r.crossed) == (len(r.doors) > 1) for r in rooms)
 
 
-def test_plan2place_keeps_a_crossed_living_room_s_doors_joined_at_the_first_layout(monkeypatch):
+def test_plan2place_keeps_a_crossed_living_room_s_doors_joined_at_the_first_layout(monkeypatch, tmp_path,
+                                                                                   capsys):
     """Apartment 7 of `bench generate --room-type apartment`: without the flag, Plan2Place's living room (3.65 x
     5.05 m, 13 objects) cuts a door off from the other in every seed tried; with it, the first layout joins them."""
     import app.pipeline as pipeline_module
@@ -70,3 +71,14 @@ def test_plan2place_keeps_a_crossed_living_room_s_doors_joined_at_the_first_layo
     assert not doors_joined(plan.room, footprint_boxes(pipeline.place(unflagged, layout.seed, observer=steps.append)
                                                        .placements))
     assert WALLS_OFF_DOOR not in [s.why for s in steps]
+    # `h3ds place` reads the optional field from the plan JSON (written without it where it is absent)
+    from app.cli import main
+    from models.values import Layout
+
+    for name, p in (("flagged", plan), ("unflagged", unflagged)):
+        (tmp_path / f"{name}.json").write_text(p.model_dump_json(exclude_none=True))
+    assert '"crossed"' not in (tmp_path / "unflagged.json").read_text()
+    for name, joined in (("flagged", True), ("unflagged", False)):
+        assert main(["place", str(tmp_path / f"{name}.json"), "--seed", str(layout.seed)]) == 0
+        placed = Layout.model_validate_json(capsys.readouterr().out).placements
+        assert doors_joined(plan.room, footprint_boxes(placed)) == joined
