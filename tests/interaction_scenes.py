@@ -62,3 +62,4 @@ SIMPLE = graph("pick_and_place_simple", [("Apple", "placed_at", "CounterTop")],
                {"Apple": ["key"], "CounterTop": ["key", "anchor"]})
 LOOK = graph("look_at_obj_in_light", [("CreditCard", "examined_under", "FloorLamp")],
              {"CreditCard": ["key"], "FloorLamp": ["key", "anchor"]})
+LAMP_ONLY = graph("look_at_obj_in_light", [], {"FloorLamp": ["key", "anchor"]})  # the parsers' "Turn on the lamp"

@@ -5,7 +5,7 @@ from __future__ import annotations
 import json
 
 import pytest
-from interaction_scenes import COOL, HEAT_SLICED, LOOK, SIMPLE, kitchen
+from interaction_scenes import COOL, HEAT_SLICED, LAMP_ONLY, LOOK, SIMPLE, kitchen
 
 from models.exports.procthor_house import to_house
 from models.interaction import SymbolicState, check_plan, execute_step, robot_plan
@@ -30,7 +30,8 @@ def without(plan: RobotPlan, *indices: int) -> RobotPlan:
     return plan.model_copy(update={"steps": [s.model_copy(update={"index": i}) for i, s in enumerate(steps)]})
 
 
-@pytest.mark.parametrize("task", [SIMPLE, COOL, HEAT_SLICED, LOOK], ids=lambda t: t.task_type)
+@pytest.mark.parametrize("task", [SIMPLE, COOL, HEAT_SLICED, LOOK, LAMP_ONLY],
+                         ids=lambda t: t.task_type + ("" if t.relations else " (the lamp alone)"))
 def test_every_task_type_reaches_its_goal_with_ids_of_the_house(task):
     scene, house, plan = plan_for(task)
     assert plan.problems == []
@@ -49,6 +50,19 @@ def test_every_task_type_reaches_its_goal_with_ids_of_the_house(task):
     assert check.ok, check.failure
     assert check.goal_conditions and all(check.goal_conditions.values())
     assert [r.ok for r in check.steps] == [True] * len(plan.steps)
+
+
+def test_the_lamp_alone_is_switched_on_and_nothing_is_picked_up():
+    """"Turn on the lamp": the parsers name only the lamp, so the plan walks to it and switches it on (it used to
+    try to pick the lamp up), and the goal asks for the light alone; without the switch it does not hold."""
+    _, house, plan = plan_for(LAMP_ONLY)
+    assert [s.action["action"] for s in plan.steps] == ["TeleportFull", "ToggleObjectOn"]
+    assert plan.objects == {"lamp": "FloorLamp|1|0"} and plan.problems == []
+    check = check_plan(house, plan, LAMP_ONLY)
+    assert check.ok and list(check.goal_conditions) == ["a FloorLamp within reach is on"]
+    assert not check_plan(house, without(plan, 1), LAMP_ONLY).ok
+    _, house, plan = plan_for(LAMP_ONLY, drop=("FloorLamp",))
+    assert plan.steps == [] and plan.problems == ["no FloorLamp in the exported house (the task's lamp)"]
 
 
 def test_cool_plan_is_alfreds_sequence():

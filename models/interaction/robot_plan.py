@@ -6,6 +6,7 @@ The plan for the four ALFRED task types (with the knife first when the task slic
   pick_cool_then_place_in_recep  fetch -> fridge: open, put, close (cooled), open, take, close -> put
   pick_heat_then_place_in_recep  fetch -> microwave: open, put, close, on (heated), off, open, take, close -> put
   look_at_obj_in_light           fetch -> walk to the lamp -> switch it on, holding the target
+                                 (a lamp alone, "Turn on the lamp", names nothing to hold: walk to it, switch it on)
   sliced                         fetch knife -> slice target -> put the knife back -> the slice is the target
 Navigation is a TeleportFull to free floor in front of the object, connected to the robot's start (a
 stand-in for a navigation mesh path: the symbolic checker verifies the floor is free and connected).
@@ -52,7 +53,10 @@ def house_roles(scene: Scene | None, room: int = 1) -> dict[str, str]:
 
 
 def _task_parts(graph: TaskGraph) -> dict[str, str]:
-    """role in the plan -> object type, from the graph's relations."""
+    """role in the plan -> object type, from the graph's relations; a look-at graph without one is the lamp alone
+    (the parsers' reading of "Turn on the lamp": no target)."""
+    if graph.lamp_alone:
+        return {"lamp": graph.with_role("key")[0].type}
     parts = {}
     for subject, rel, other in graph.relations:
         parts.setdefault("target", subject)
@@ -180,15 +184,15 @@ def plan_on_house(house: dict, graph: TaskGraph | None, roles: dict[str, str], f
         return RobotPlan(task_type="", instruction="", steps=[], problems=["the scene has no task graph"])
     state = SymbolicState.from_house(house)
     parts = _task_parts(graph)
-    ids = {"target": _choose(state, parts.get("target"), roles, ("key",))}
+    ids = {"target": _choose(state, parts["target"], roles, ("key",))} if "target" in parts else {}
     for part, prefer in (("receptacle", ("anchor", "key")), ("fridge", ("inference",)),
                          ("microwave", ("inference",)), ("lamp", ("anchor", "key")), ("knife", ("inference",))):
         if part in parts:
-            ids[part] = _choose(state, parts[part], roles, prefer, exclude={ids["target"] or ""})
+            ids[part] = _choose(state, parts[part], roles, prefer, exclude={ids.get("target") or ""})
     b = _Builder(state, force_action)
     missing = [f"no {parts[p]} in the exported house (the task's {p})" for p, i in ids.items() if i is None]
-    b.problems.extend(missing)
-    if not missing:
+    b.problems.extend(missing if parts else ["the task graph names no object to act on"])
+    if parts and not missing:
         _write(b, graph, ids)
     objects = {k: v for k, v in ids.items() if v is not None}
     if graph.sliced and ids.get("target"):
@@ -209,6 +213,11 @@ def _put_back_place(state: SymbolicState, knife: str) -> str | None:
 
 
 def _write(b: _Builder, graph: TaskGraph, ids: dict[str, str]) -> None:
+    if "target" not in ids:  # the lamp alone
+        lamp = ids["lamp"]
+        if b.goto(lamp):
+            b.act("ToggleObjectOn", lamp, f"switch {lamp} on (the instruction names nothing to look at)")
+        return
     target = ids["target"]
     if graph.sliced or "knife" in ids:
         knife = ids.get("knife")
@@ -275,7 +284,8 @@ def goal_conditions(state: SymbolicState, graph: TaskGraph) -> tuple[str, dict[s
     if "lamp" in parts:
         lamp = parts["lamp"]
         held = state.objects.get(state.held) if state.held else None
-        conds[f"the robot holds a {kind}"] = [held] if held is not None and held.type == kind else []
+        if "target" in parts:  # the lamp alone asks only for the light
+            conds[f"the robot holds a {kind}"] = [held] if held is not None and held.type == kind else []
         conds[f"a {lamp} within reach is on"] = [o for o in state.of_type(lamp)
                                                   if o.is_on and state.distance_to(o.id) <= INTERACT_RANGE]
     holds = {name: bool(found) for name, found in conds.items()}

@@ -55,6 +55,11 @@ class TaskGraph(Value):
         return [o for o in self.objects if role in o.roles]
 
     @property
+    def lamp_alone(self) -> bool:
+        """A look-at task that names nothing to look at ("Turn on the lamp"): its key object is the lamp itself."""
+        return self.task_type == "look_at_obj_in_light" and not self.relations and bool(self.with_role("key"))
+
+    @property
     def anchor(self) -> TaskObject | None:
         found = self.with_role("anchor")
         return found[0] if found else None
