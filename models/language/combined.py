@@ -40,11 +40,11 @@ import os
 
 from models.language.alfred import named_types
 from models.language.base import InstructionError, check_instruction
-from models.language.llm.graph_text import LAMPS, GraphFields, graph_of
+from models.language.llm.graph_text import GraphFields, graph_of
 from models.language.llm.parser import LoraParser
 from models.language.rule_parser import RuleParser
 from models.values import TaskGraph
-from models.world import normalise_room_type
+from models.world import LAMPS, normalise_room_type
 
 PARSERS = ("combined", "rules", "lora", "openai")
 STRICT = "rules-first-strict"  # rules-first without the model's fallback on rows the rules refuse or read as a lamp alone

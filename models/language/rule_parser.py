@@ -19,7 +19,7 @@ from functools import cache
 from models.language.alfred import misspelt_types, named_types
 from models.language.base import InstructionError, check_instruction
 from models.values import Provenance, TaskGraph, TaskObject
-from models.world import ROOM_TYPES, catalogue, normalise_room_type
+from models.world import LAMPS, ROOM_TYPES, catalogue, normalise_room_type
 from models.world.catalogue import Catalogue, load_json
 
 COOL_WORDS = {"chill", "chilled", "chilling", "cool", "cooled", "cooling", "cold", "colder", "freeze", "frozen",
@@ -37,7 +37,6 @@ BELOW_WORDS = {"under", "underneath", "beneath", "below"}
 DESTINATION_WORDS = {"in", "into", "on", "onto", "inside", "at", "to", "atop", "within", "upon"}
 LANDMARK_WORDS = {"by", "near", "beside", "next", "above", "below", "under", "left", "right", "behind", "between",
                   "across", "underneath", "beneath", "front", "of"}
-LAMPS = ("DeskLamp", "FloorLamp")
 DETERMINERS = {"the", "a", "an", "my", "your", "this", "that", "some", "one"}
 STOPWORDS_AFTER = {"the", "a", "an", "it", "its", "my", "your", "this", "that", "some", "one", "top", "of", "front",
                    "inside", "away", "back", "there", "here", "place", "position"}

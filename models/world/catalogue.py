@@ -22,6 +22,7 @@ HOST_TYPES: dict[str, str] = {
 
 # Types that stand free in the room whatever their wall prior says (they are arranged around others).
 MIDDLE_TYPES = {"Chair", "Stool", "CoffeeTable", "Ottoman", "Cart"}
+LAMPS = ("DeskLamp", "FloorLamp")  # the lamps of ALFRED's look-at tasks
 
 # Footprints are modelled as rectangles, so L- and C-shaped counters (whose bounding box is mostly
 # empty) are not offered: only the straight ("I") and island counters are.

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 from models.language.alfred import RELATION_ORDER, Annotation
 from models.values import Provenance, TaskGraph, TaskObject
-from models.world import catalogue
+from models.world import LAMPS, catalogue
 
 TASK_WORDS: dict[str, str] = {
     "place": "pick_and_place_simple",
@@ -25,7 +25,6 @@ TASK_WORDS: dict[str, str] = {
 }
 WORD_OF_TASK = {v: k for k, v in TASK_WORDS.items()}
 SLICE_WORDS = ("whole", "sliced")
-LAMPS = ("DeskLamp", "FloorLamp")
 SEPARATOR = " | "
 PROCESS = {"pick_cool_then_place_in_recep": ("Fridge", "cooled_in"),
            "pick_heat_then_place_in_recep": ("Microwave", "heated_in")}

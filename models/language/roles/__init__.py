@@ -13,8 +13,7 @@ from typing import Protocol
 
 from models.language.alfred import named_types
 from models.language.base import InstructionError
-
-LAMPS = ("DeskLamp", "FloorLamp")
+from models.world import LAMPS
 
 
 class RoleClassifier(Protocol):
