@@ -82,3 +82,30 @@ def test_plan2place_keeps_a_crossed_living_room_s_doors_joined_at_the_first_layo
         assert main(["place", str(tmp_path / f"{name}.json"), "--seed", str(layout.seed)]) == 0
         placed = Layout.model_validate_json(capsys.readouterr().out).placements
         assert doors_joined(plan.room, footprint_boxes(placed)) == joined
+
+
+def test_restore_access_rejoins_a_door_cut_off_in_a_crossed_room(monkeypatch):
+    """Apartment 8 of the bench ("Hold a remote and turn on the lamp.", seed 8): Plan2Place's steps leave the living
+    room's second door (and two task objects) cut off; the restore-access repair, looking for what stands nearest
+    the doorway too, moves one armchair and every one is reached again, its step saying so."""
+    import app.pipeline as pipeline_module
+    import models.placement.repair as repair_module
+    from app.pipeline import Pipeline
+
+    seen, restore = [], repair_module.restore_access
+
+    def watched(ep, observer=None):
+        before = ep.reach.unreachable(ep.placed)
+        steps = []
+        moved = restore(ep, lambda s: (steps.append(s), observer and observer(s)))
+        if ep.reach.gates:
+            seen.append((before, moved, ep.reach.unreachable(ep.placed), [s.why for s in steps]))
+        return moved
+
+    monkeypatch.setattr(repair_module, "restore_access", watched)
+    monkeypatch.setattr(pipeline_module, "PASSABLE_TRIES", 1)
+    Pipeline(solver="plan2place").generate_apartment("Hold a remote and turn on the lamp.", None, seed=8)
+    cut = [s for s in seen if any(o.startswith("door|") for o in s[0])]
+    assert cut and all(moved and after == [] for _, moved, after, _ in cut)
+    assert all(why == ["clearing the robot's way to the task objects and doors"] * len(moved)
+               for _, moved, _, why in cut)
