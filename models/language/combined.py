@@ -115,7 +115,7 @@ class CombinedParser:
     def rules_stand(self, ruled: TaskGraph | None) -> bool:
         """Under `rules-first-strict`, a refusal or a lamp alone (no relation) by the rules stands; under
         `rules-first-fieldwise`, a lamp alone (the model, asked, mostly invents the object looked at)."""
-        lamp_alone = ruled is not None and rule_fields(ruled) is None
+        lamp_alone = ruled is not None and ruled.lamp_alone
         return (self.policy == STRICT and (ruled is None or lamp_alone)) or (self.policy == FIELDWISE and lamp_alone)
 
     def answers_refusal(self, fields: GraphFields, confidence: tuple[float, ...], named: set[str]) -> bool:
