@@ -63,6 +63,9 @@ def test_the_lamp_alone_is_switched_on_and_nothing_is_picked_up():
     assert not check_plan(house, without(plan, 1), LAMP_ONLY).ok
     _, house, plan = plan_for(LAMP_ONLY, drop=("FloorLamp",))
     assert plan.steps == [] and plan.problems == ["no FloorLamp in the exported house (the task's lamp)"]
+    anchor_only = [LAMP_ONLY.objects[0].model_copy(update={"roles": ["anchor"]})]
+    nothing = LAMP_ONLY.model_copy(update={"objects": anchor_only})  # no relation, no key object: nothing to act on
+    assert robot_plan(None, house, nothing).problems == ["the task graph names no object to act on"]
 
 
 def test_cool_plan_is_alfreds_sequence():

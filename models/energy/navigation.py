@@ -76,11 +76,16 @@ def in_box_mask(grid: Grid, box) -> np.ndarray:
     return (gx >= box[0]) & (gx <= box[2]) & (gz >= box[1]) & (gz <= box[3])
 
 
+def door_masks(grid: Grid, room: Room) -> list[np.ndarray]:
+    """Each door's cells (inside its doorway), in the room's order of doors."""
+    return [in_box_mask(grid, box) for box in door_boxes(room)]
+
+
 def door_cells(grid: Grid, room: Room) -> np.ndarray:
     """The cells the robot may start from (inside a doorway)."""
     start = np.zeros(grid.mesh()[0].shape, bool)
-    for box in door_boxes(room):
-        start |= in_box_mask(grid, box)
+    for door in door_masks(grid, room):
+        start |= door
     return start
 
 
@@ -88,11 +93,10 @@ def doors_joined(room: Room, boxes: np.ndarray) -> bool:
     """Whether the robot can walk from each of the room's doors to every other past the objects' boxes (M, 4): a
     room it crosses on its way to the next one."""
     grid = Grid(room.width, room.depth)
-    blocked = blocked_by_boxes(grid, boxes)
-    doors = [in_box_mask(grid, box) & ~blocked for box in door_boxes(room)]
+    doors = door_masks(grid, room)
     if len(doors) < 2:
         return True
-    reach = reachable_from(blocked, doors[0])
+    reach = reachable_from(blocked_by_boxes(grid, boxes), doors[0])  # free cells only, so a blocked door is apart
     return all((reach & d).any() for d in doors[1:])
 
 

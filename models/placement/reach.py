@@ -30,11 +30,11 @@ class Reach:
         self.mesh = self.grid.mesh()
         self.task = {o.id for o in problem.plan.objects if o.is_task}
         self._strips: dict[tuple, np.ndarray] = {}
-        boxes = nav.door_boxes(room)
-        if room.crossed and len(boxes) > 1:
-            self.start = nav.in_box_mask(self.grid, boxes[0])
-            self.gates = {GATE.format(i): nav.in_box_mask(self.grid, box) for i, box in enumerate(boxes[1:], 1)}
-            self.gate_centres = {GATE.format(i): _centre(box) for i, box in enumerate(boxes[1:], 1)}
+        doors = nav.door_masks(self.grid, room)
+        if room.crossed and len(doors) > 1:
+            self.start = doors[0]
+            self.gates = {GATE.format(i): door for i, door in enumerate(doors[1:], 1)}
+            self.gate_centres = {GATE.format(i): _centre(box) for i, box in enumerate(nav.door_boxes(room)[1:], 1)}
         else:
             self.start = nav.door_cells(self.grid, room)
             self.gates, self.gate_centres = {}, {}

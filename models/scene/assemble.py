@@ -128,13 +128,14 @@ def _entry(room: Room, objects: Sequence[SceneObject]) -> int:
     grid = nav.Grid(room.width, room.depth)
     blocked = nav.blocked_by_boxes(grid, footprint_boxes(objects))
     tasks = footprint_boxes([o for o in objects if o.role != "context"] + [c for o in objects for c in o.children
-                                                                  if c.role != "context"])
+                                                                           if c.role != "context"])
+    doors = nav.door_masks(grid, room)
     gx, gz = grid.mesh()
     near = [np.hypot(np.maximum(0, np.maximum(b[0] - gx, gx - b[2])), np.maximum(0, np.maximum(b[1] - gz, gz - b[3])))
             <= APPROACH for b in tasks]  # the cells within the robot plan's approach of each task object
 
     def score(k: int) -> tuple[int, int, int]:
-        reach = nav.reachable_from(blocked, nav.in_box_mask(grid, nav.door_boxes(room)[k]))
+        reach = nav.reachable_from(blocked, doors[k])
         return sum(bool((reach & m).any()) for m in near), int(reach.sum()), -k
 
     return max(range(len(room.doors)), key=score)
