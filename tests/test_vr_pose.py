@@ -8,7 +8,9 @@ from interaction_scenes import COOL, LOOK, SIMPLE, graph, kitchen, obj
 from shapely.geometry import LineString, Point
 
 from models.interaction import vr_start_pose
-from models.interaction.vr_pose import ARM_REACH, BODY_RADIUS, _sight_blocker, footprint, usable_face
+from models.geometry import front
+from models.interaction.vr_pose import (ARM_REACH, BODY_RADIUS, _sight_blocker, circle_radius, footprint,
+                                         usable_face)
 from models.values import AgentPose, Opening, Room, Scene
 
 
@@ -41,6 +43,21 @@ def test_every_alternative_is_valid_by_an_independent_check():
         body = Point(c.pose.x, c.pose.z).buffer(BODY_RADIUS)
         assert body.bounds[0] >= 0 and body.bounds[1] >= 0 and body.bounds[2] <= 5 and body.bounds[3] <= 5
         assert all(not body.intersects(footprint(o).polygon()) for o in scene.objects)
+
+
+def test_a_pose_is_checked_as_it_is_stored_rounded_to_the_millimetre():
+    """A stool 0.17 mm further than a body radius from a candidate's exact position, and nearer than it from
+    the position rounded as the pose stores it: the candidate must be rejected, not stored touching the stool."""
+    counter = obj("countertop-0", "CounterTop", 2.0, 0.3055, 0, "anchor")
+    ring, (dx, dz) = circle_radius(counter, counter), front(35.0)  # a candidate whose x rounds up by 0.34 mm
+    px, pz = counter.x + ring * dx, counter.z + ring * dz
+    assert round(px, 3) - px > 0.0003
+    stool = obj("stool-0", "Stool", 0, 0, 0)
+    stool = stool.model_copy(update={"x": px + BODY_RADIUS + 0.00017 + stool.size.x / 2, "z": pz})
+    choice = vr_start_pose(room_with([counter, stool], SIMPLE, width=5.0))
+    assert choice.alternatives
+    for c in choice.alternatives:
+        assert footprint(stool).polygon().distance(Point(c.pose.x, c.pose.z)) >= BODY_RADIUS
 
 
 def test_stools_in_front_push_the_pose_to_a_gap_or_report_why():
