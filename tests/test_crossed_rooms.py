@@ -85,9 +85,9 @@ def test_plan2place_keeps_a_crossed_living_room_s_doors_joined_at_the_first_layo
 
 
 def test_restore_access_rejoins_a_door_cut_off_in_a_crossed_room(monkeypatch):
-    """Apartment 8 of the bench ("Hold a remote and turn on the lamp.", seed 8): Plan2Place's steps leave the living
-    room's second door (and two task objects) cut off; the restore-access repair, looking for what stands nearest
-    the doorway too, moves one armchair and every one is reached again, its step saying so."""
+    """Apartment 27 of the bench ("Examine keys in the light of a lamp.", seed 27): Plan2Place's steps leave a crossed
+    room's third door (and the floor lamp) cut off; the restore-access repair, looking for what stands nearest the
+    doorway too, moves one piece and every one is reached again, its step saying so."""
     import app.pipeline as pipeline_module
     import models.placement.repair as repair_module
     from app.pipeline import Pipeline
@@ -104,7 +104,7 @@ def test_restore_access_rejoins_a_door_cut_off_in_a_crossed_room(monkeypatch):
 
     monkeypatch.setattr(repair_module, "restore_access", watched)
     monkeypatch.setattr(pipeline_module, "PASSABLE_TRIES", 1)
-    Pipeline(solver="plan2place").generate_apartment("Hold a remote and turn on the lamp.", None, seed=8)
+    Pipeline(solver="plan2place").generate_apartment("Examine keys in the light of a lamp.", None, seed=27)
     cut = [s for s in seen if any(o.startswith("door|") for o in s[0])]
     assert cut and all(moved and after == [] for _, moved, after, _ in cut)
     assert all(why == ["clearing the robot's way to the task objects and doors"] * len(moved)

@@ -182,13 +182,13 @@ def test_downloads_are_the_selected_version(browser, studio):
     if session.state.findings:  # the placer's own layout may already fail a check (asked before saving)
         page.get_by_role("button", name="Save anyway").click()
     page.get_by_text(re.compile(r"Saved as scene \d+, version 1")).wait_for(timeout=WAIT)
-    stool = session.state.gen.layout.placement("stool-1")
+    chair = session.state.gen.layout.placement("chair-1")
     settle(page)
-    page.mouse.click(*object_xy(session, "stool-1", 0.9))  # a typed-in pose and a turn, in the picked panel
-    wait_until(page, lambda: session.selected == "stool-1", "stool-3 picked")
-    enter(page, "x (m)", round(stool.x - 0.4, 2), session.pose_x)
+    page.mouse.click(*object_xy(session, "chair-1", 0.9))  # a typed-in pose and a turn, in the picked panel
+    wait_until(page, lambda: session.selected == "chair-1", "chair-1 picked")
+    enter(page, "x (m)", round(chair.x - 0.4, 2), session.pose_x)
     page.get_by_role("button", name="Apply pose").click()
-    page.get_by_text(re.compile(r"Moved `?stool-1`? .*typed pose")).wait_for(timeout=WAIT)
+    page.get_by_text(re.compile(r"Moved `?chair-1`? .*typed pose")).wait_for(timeout=WAIT)
     page.get_by_role("button", name="+90°").click()
     page.get_by_text(re.compile(r"turn \+90")).wait_for(timeout=WAIT)
     page.get_by_role("button", name="Accept & save").click()

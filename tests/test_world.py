@@ -150,3 +150,29 @@ def test_chairs_no_table_or_desk_seats_stand_alone_one_at_most():
     now, stored = lone_chairs(RoomPlanner()), lone_chairs(RoomPlanner(RoomPlannerSettings(as_stored=True)))
     assert now and max(now) <= 1 and any(now)
     assert max(stored) > 1
+
+
+def test_a_living_room_with_a_dining_table_seats_as_many_chairs_as_ithor_ones_do():
+    """iTHOR living rooms with a dining table hold 4.4 chairs on average, those without 0.75; chairs drawn for the
+    room type as a whole (2.4 on average) left a table with one or two."""
+    import statistics
+    from collections import Counter
+
+    from models.planning import RoomPlanner
+    from models.values import TaskGraph
+    from models.world.catalogue import ithor_scenes
+
+    ithor = [Counter(o["type"] for o in s["objects"]) for s in ithor_scenes() if s["room_type"] == "living room"]
+    with_table = statistics.mean(c["Chair"] for c in ithor if c["DiningTable"])
+    presence, count = catalogue().room_stats_given("Chair", "living room", "DiningTable", True)
+    assert with_table == pytest.approx(presence * count, abs=0.01) and with_table > 4
+    assert catalogue().room_stats_given("Chair", "bedroom", "DiningTable", False) == \
+        (catalogue().room_presence("Chair", "bedroom"), catalogue().room_count("Chair", "bedroom"))
+
+    graph = TaskGraph.model_validate({"instruction": "Pick up the apple", "room_type": "living room", "task_type":
+                                      "pick_and_place_simple", "objects": [{"type": "Apple", "roles": ["key"]}]})
+    rooms = [Counter(o.type for o in RoomPlanner().plan(graph, s).objects) for s in range(120)]
+    seated = [c["Chair"] for c in rooms if c["DiningTable"]]
+    alone = [c["Chair"] for c in rooms if not c["DiningTable"]]
+    assert len(seated) > 30 and abs(statistics.mean(seated) - with_table) < 0.7, statistics.mean(seated)
+    assert alone and statistics.mean(alone) < 1

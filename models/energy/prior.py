@@ -12,7 +12,6 @@ smoothed), in [0, 1]; pairs never seen together have no prior (0).
 
 from __future__ import annotations
 
-import gzip
 import json
 import math
 from collections import defaultdict
@@ -24,6 +23,7 @@ import numpy as np
 
 from models.constraints.evaluate import gap_of_boxes
 from models.world import catalogue
+from models.world.catalogue import ithor_scenes
 
 GAP_BINS = (0.0, 0.1, 0.3, 0.6, 1.0, 1.5, 2.5, 4.0)  # left edges, metres; last bin open
 TURN_BINS = 3  # |relative yaw| near 0, 90 or 180 degrees
@@ -153,11 +153,6 @@ class RelationPrior:
 @cache
 def relation_prior() -> RelationPrior:
     return RelationPrior(json.loads(resources.files("models").joinpath("data/relation_prior.json").read_text()))
-
-
-def ithor_scenes() -> list[dict]:
-    raw = resources.files("models").joinpath("data/ithor_scenes.jsonl.gz").read_bytes()
-    return [json.loads(line) for line in gzip.decompress(raw).decode().splitlines() if line]
 
 
 def judge_scene(scene: str) -> bool:

@@ -32,10 +32,10 @@ from pathlib import Path
 import numpy as np
 
 from models.constraints.evaluate import gap_of_boxes
-from models.energy.prior import (POOLED, WALL_TOUCH, _box, floor_types, ithor_scenes, judge_scene, standing_objects,
-                                 wall_touch)
+from models.energy.prior import POOLED, WALL_TOUCH, _box, floor_types, judge_scene, standing_objects, wall_touch
 from models.geometry import boxes, front
 from models.values import ConstraintPlan, Layout
+from models.world.catalogue import ithor_scenes
 
 HABIT = 0.7
 MIN_INSTANCES = 3

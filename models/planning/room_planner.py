@@ -30,6 +30,9 @@ OPEN_SURFACES = ("CounterTop", "DiningTable", "SideTable", "Desk", "CoffeeTable"
                  "Bed", "Sofa", "ArmChair", "Sink", "Toilet")
 # Chairs no table or desk seats: iTHOR rooms without either hold 0.6 (living rooms), 0.57 (kitchens), 0 (bedrooms)
 LONE_MEMBERS = {"Chair": 1}
+# Members whose number iTHOR ties to another piece, drawn from the rooms with it (or without it) where the room type
+# can have it: living rooms with a dining table hold 4.4 chairs (0-8), those without 0.75 (0-3)
+SEATED_BY = {"Chair": "DiningTable"}
 FLOOR_FILL_LIMIT = 0.42  # share of the floor that furniture footprints may cover
 
 
@@ -156,15 +159,22 @@ class RoomPlanner:
 
     def _draw_context(self, room_type: str, rng: random.Random, present: Counter[str]) -> list[str]:
         """Each candidate type with its chance of being in such a room, then as many of it as such rooms hold (1 plus
-        a Poisson draw with the iTHOR mean's excess), less those already there. At most max_context pieces besides
+        a Poisson draw with the iTHOR mean's excess), less those already there; chairs after the dining table, by
+        the rooms with or without one. At most max_context pieces besides
         the chairs, lamps, armchairs and sofas (which groups seat; as many as drawn), the first of each type before any
         second; topped up by frequency below min_context."""
         weights = self._candidates(room_type)
+        tied = [n for n in sorted(weights) if SEATED_BY.get(n) in weights]  # drawn once their root's draw is known
         drawn: list[tuple[int, float, str]] = []
-        for name in sorted(weights):
-            if rng.random() >= weights[name]:
+        for name in [n for n in sorted(weights) if n not in tied] + tied:
+            chance, count = weights[name], self.cat.room_count(name, room_type)
+            if name in tied:
+                root = SEATED_BY[name]
+                chance, count = self.cat.room_stats_given(name, room_type, root,
+                                                          bool(present[root]) or any(n == root for *_, n in drawn))
+            if rng.random() >= chance:
                 continue
-            extra = _poisson(self.cat.room_count(name, room_type) - 1, rng) if self._repeats(name) else 0
+            extra = _poisson(count - 1, rng) if self._repeats(name) else 0
             drawn += [(k, rng.random(), name) for k in range(present[name], 1 + extra)]
         ordered = [name for _, _, name in sorted(drawn)]
         chosen = [n for n in ordered if n not in GROUP_MEMBER_TYPES][:self.settings.max_context]
@@ -203,7 +213,8 @@ class RoomPlanner:
         options = [g for g in self.groups.values() if g["members"][0]["type"] == root
                    and (ithor_key is None or g["room_weights"].get(ithor_key, 0) > 0)
                    and any(m["type"] in GROUP_MEMBER_TYPES for m in g["members"][1:])]
-        if not options or rng.random() > self.settings.group_chance:
+        seated = budget is not None and root in SEATED_BY.values()  # its chairs were drawn for it: no second roll
+        if not options or (not seated and rng.random() > self.settings.group_chance):
             return []
         if budget is None:
             return _members(rng.choice(sorted(options, key=lambda g: len(g["members"]))))

@@ -40,8 +40,8 @@ def default_scorer() -> LearnedScorer:
 
 def ithor_layouts() -> list[tuple[str, float, float, list[LayoutItem]]]:
     """The iTHOR rooms as (room type, width, depth, floor objects) with the room's corner at the origin."""
-    from models.energy.prior import ithor_scenes
     from models.world import catalogue
+    from models.world.catalogue import ithor_scenes
     cat = catalogue()
     floor = {n for n, t in cat.types.items() if t.on_floor and not t.pickupable}
     out = []

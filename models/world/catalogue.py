@@ -2,8 +2,10 @@
 
 from __future__ import annotations
 
+import gzip
 import json
 import random
+import statistics
 from dataclasses import dataclass, field
 from functools import cache, cached_property
 from importlib import resources
@@ -148,12 +150,35 @@ class Catalogue:
             return self.host(name).rooms.get(spec.ithor, {}).get("mean_count", 1.0)
         return 1.0
 
+    def room_stats_given(self, name: str, room_type: str, other: str, with_other: bool) -> tuple[float, float]:
+        """`room_presence` and `room_count` of the type among the iTHOR rooms of this type that hold `other` (or,
+        `with_other` False, that do not): chairs come with a dining table. The plain figures where iTHOR has no
+        such room."""
+        spec = ROOM_SPECS[room_type]
+        found = _stats_given(spec.ithor, name, other, with_other) if spec.ithor is not None else None
+        return found or (self.room_presence(name, room_type), self.room_count(name, room_type))
+
 
 @cache
 def catalogue() -> Catalogue:
     """The bundled catalogue (loaded once per process)."""
     text = resources.files("models").joinpath("data/catalogue.json").read_text()
     return Catalogue(json.loads(text))
+
+
+def ithor_scenes() -> list[dict]:
+    """The 120 hand-designed iTHOR rooms: each room's type and its objects' types, poses and sizes."""
+    raw = resources.files("models").joinpath("data/ithor_scenes.jsonl.gz").read_bytes()
+    return [json.loads(line) for line in gzip.decompress(raw).decode().splitlines() if line]
+
+
+@cache
+def _stats_given(room_type: str, name: str, other: str, with_other: bool) -> tuple[float, float] | None:
+    counts = [sum(o["type"] == name for o in s["objects"]) for s in ithor_scenes()
+              if s["room_type"] == room_type and any(o["type"] == other for o in s["objects"]) == with_other]
+    holding = [n for n in counts if n]
+    return (round(len(holding) / len(counts), 3), round(statistics.mean(holding), 3) if holding else 1.0) \
+        if counts else None
 
 
 def load_json(name: str):

@@ -3,16 +3,14 @@ as the stored datasets were built (`as_stored`: a count of pieces drawn first an
 allowed) and as it plans now (each type as often as iTHOR rooms hold it), for a one-object task, seeds 0-199. Writes
 room-contents.txt beside this script:  PYTHONPATH=. python app/bench/results/room-contents.py"""
 
-import gzip
-import json
 import statistics
 from collections import Counter
-from importlib import resources
 from pathlib import Path
 
 from models.planning import RoomPlanner
 from models.planning.room_planner import RoomPlannerSettings
 from models.values import TaskGraph
+from models.world.catalogue import ithor_scenes
 from models.world.rooms import ROOM_SPECS
 
 SEEDS = 200
@@ -20,9 +18,7 @@ PLANNERS = {"as stored": RoomPlanner(RoomPlannerSettings(as_stored=True)), "now"
 
 
 def ithor_rooms(room: str) -> list[Counter]:
-    with gzip.open(resources.files("models").joinpath("data/ithor_scenes.jsonl.gz").open("rb"), "rt") as f:
-        rows = [json.loads(line) for line in f]
-    return [Counter(o["type"] for o in r["objects"]) for r in rows if r["room_type"] == room]
+    return [Counter(o["type"] for o in r["objects"]) for r in ithor_scenes() if r["room_type"] == room]
 
 
 def planned_rooms(planner: RoomPlanner, room: str) -> list[Counter]:
