@@ -10,13 +10,13 @@ from models.interaction import SymbolicState, check_plan
 from models.interaction.apartment import apartment_haptic_profiles, apartment_robot_plan, apartment_vr_pose
 from models.values.apartment import OUTSIDE
 
-LAMP = "Pick up a mug from the desk, turn on the lamp"  # seed 4: the mug in the kitchen, the lamp in the bedroom
+LAMP = "Pick up a mug from the desk, turn on the lamp"  # seed 2: the mug in the kitchen, the lamp in the bedroom
 BREAD = "Put a chilled bread on the counter"
 
 
 @pytest.fixture(scope="module")
 def two_rooms(pipeline):
-    apartment = pipeline.generate_apartment(LAMP, None, seed=4)
+    apartment = pipeline.generate_apartment(LAMP, None, seed=2)
     house = apartment_house(apartment)
     return apartment, house, apartment_robot_plan(apartment, house)
 
@@ -127,7 +127,7 @@ def test_the_house_json_gives_the_floorplans_walkable_floor(pipeline, two_rooms)
 
 
 def test_a_room_the_robot_crosses_is_placed_again_until_its_doors_are_joined(two_rooms, pipeline, monkeypatch):
-    """Seed 4's living room joins the entrance to the kitchen (and through it the bedroom); DFS's first layout of it
+    """Seed 2's living room joins the entrance to the kitchen (and through it the bedroom); DFS's first layout of it
     cuts the entrance off (the robot's plan could not reach the mug), the next seed's does not."""
     import app.pipeline as pipeline_module
     from models.energy.navigation import doors_joined
@@ -136,12 +136,12 @@ def test_a_room_the_robot_crosses_is_placed_again_until_its_doors_are_joined(two
     apartment, _, plan = two_rooms
     crossed = [(p, layout) for p, layout in zip(apartment.plans, apartment.layouts) if len(p.room.doors) > 1]
     assert crossed and all(doors_joined(p.room, footprint_boxes(layout.placements)) for p, layout in crossed)
-    assert any(layout.seed != 4 for _, layout in crossed) and not plan.problems
+    assert any(layout.seed != 2 for _, layout in crossed) and not plan.problems
     for p, layout in crossed:  # the layout's seed places it again (the studio's replay of a stored apartment)
         assert pipeline.place(p, layout.seed).placements == layout.placements
 
     monkeypatch.setattr(pipeline_module, "PASSABLE_TRIES", 1)
-    once = pipeline.generate_apartment(LAMP, None, seed=4)
+    once = pipeline.generate_apartment(LAMP, None, seed=2)
     cut = [layout for p, layout in zip(once.plans, once.layouts) if len(p.room.doors) > 1
            and not doors_joined(p.room, footprint_boxes(layout.placements))]
     assert cut and any("cuts one of the room's doors off" in w for layout in cut for w in layout.warnings)

@@ -176,3 +176,28 @@ def test_a_living_room_with_a_dining_table_seats_as_many_chairs_as_ithor_ones_do
     alone = [c["Chair"] for c in rooms if not c["DiningTable"]]
     assert len(seated) > 30 and abs(statistics.mean(seated) - with_table) < 0.7, statistics.mean(seated)
     assert alone and statistics.mean(alone) < 1
+
+
+def test_a_piece_is_sized_like_those_of_its_type_in_ithor_rooms_of_the_type():
+    """A bathroom's counter is a vanity of about 1.8 m (iTHOR's bathrooms), not any counter asset up to a 3 m island;
+    a bedroom's dresser about 1.5 m. The stored sets' recipe keeps any asset."""
+    import statistics
+
+    from models.planning import RoomPlanner
+    from models.planning.room_planner import RoomPlannerSettings
+    from models.values import TaskGraph
+
+    cat = catalogue()
+    for room, name in [("bathroom", "CounterTop"), ("bedroom", "Dresser"), ("living room", "Dresser")]:
+        ithor = statistics.median(long for long, _ in cat.ithor_footprints(name, room))
+        graph = TaskGraph.model_validate({"instruction": "Pick up the apple", "room_type": room, "task_type":
+                                          "pick_and_place_simple", "objects": [{"type": "Apple", "roles": ["key"]}]})
+
+        def median_side(planner) -> float:
+            return statistics.median(max(o.size.x, o.size.z) for s in range(80) for o in planner.plan(graph, s).objects
+                                     if o.type == name)
+
+        now, stored = median_side(RoomPlanner()), median_side(RoomPlanner(RoomPlannerSettings(as_stored=True)))
+        assert abs(now - ithor) < 0.15, (room, name, now, ithor)
+        assert abs(stored - ithor) > 0.25, (room, name, stored, ithor)
+    assert cat.ithor_footprints("CounterTop", "office") == ()  # no iTHOR offices: any asset, as before

@@ -5,10 +5,11 @@ order) are split into two groups of about equal area, the rectangle is cut acros
 that area ratio, and each half is cut again for its group. Rooms therefore never overlap, cover the
 house and share walls with their neighbours. Of several seeded orders and outlines it keeps the one
 whose rooms are least elongated and in which every neighbour pair needed for connectivity shares
-enough wall for a door. The entrance is cut into an outside wall of the hub (a hallway, else the living
-room, kitchen...); interior doors follow a seeded spanning tree of the rooms that share enough wall,
-grown from the entrance's room (so every room is reachable from the entrance); windows go on outside
-walls only.
+enough wall for a door; longer outlines, then small rooms made larger, only where no near-square
+outline gives every room MIN_SIDE (`STAGES`). The entrance is cut into an outside wall of the hub (a
+hallway, else the living room, kitchen...); interior doors follow a seeded spanning tree of the rooms
+that share enough wall, grown from the entrance's room (so every room is reachable from the entrance);
+windows go on outside walls only.
 """
 
 from __future__ import annotations
@@ -31,6 +32,12 @@ HUB_ORDER = ("hallway", "living room", "kitchen", "dining room", "office", "gara
 HUB_TYPES = {"hallway", "living room"}
 MIN_SIDE = 2.0  # no room narrower than this (metres)
 ATTEMPTS = 40
+# Tried in turn until one lays the rooms out: (the range of the outline's length over width, the least area of a
+# room as a share of the mean room's). Near square at the rooms' own areas first; then longer outlines (a small room
+# beside large ones is a strip under MIN_SIDE wide across a near-square house: a 10 m2 bathroom beside a 30 m2 living
+# room is 1.6-2.0 m wide there, 2.5 m in a 10 x 4 m house); then small rooms grown to half the mean room's area (a
+# 7 m2 bathroom among four rooms of 18-38 m2 is such a strip in any outline)
+STAGES = (((1.0, 1.6), 0.0), ((1.6, 3.0), 0.0), ((1.0, 1.6), 0.5))
 EPS = 1e-6
 
 
@@ -161,23 +168,28 @@ class SlicingFloorplan:
             raise FloorplanError("an apartment needs at least one room")
         rng = random.Random(seed)
         best = None
-        for _ in range(ATTEMPTS):
-            attempt = self._attempt(shells, rng)
-            if attempt is not None and (best is None or attempt[0] < best[0]):
-                best = attempt
+        for ratios, least in STAGES:
+            for _ in range(ATTEMPTS):
+                attempt = self._attempt(shells, rng, ratios, least)
+                if attempt is not None and (best is None or attempt[0] < best[0]):
+                    best = attempt
+            if best is not None:
+                break
         if best is None:
             raise FloorplanError(f"could not lay out {len(shells)} rooms at least {MIN_SIDE} m wide with a door "
                                  f"into each (at least {_door_span():.2f} m of shared wall)")
         _, bounds, tree, entrance = best
         return self._openings(shells, bounds, tree, entrance, rng, seed)
 
-    def _attempt(self, shells: list[Room], rng: random.Random):
-        """(score, bounds, door pieces, entrance piece) of one seeded slicing, or None if it fails."""
+    def _attempt(self, shells: list[Room], rng: random.Random, ratios: tuple[float, float], least: float):
+        """(score, bounds, door pieces, entrance piece) of one seeded slicing of an outline whose length over width is
+        drawn from `ratios`, each room given at least `least` x the mean room's area; None if it fails."""
         order = list(range(len(shells)))
         rng.shuffle(order)
-        areas = [(i, shells[i].width * shells[i].depth) for i in order]
+        floor = least * sum(s.width * s.depth for s in shells) / len(shells)
+        areas = [(i, max(shells[i].width * shells[i].depth, floor)) for i in order]
         total = sum(a for _, a in areas)
-        ratio = rng.uniform(1.0, 1.6)
+        ratio = rng.uniform(*ratios)
         width = snap(math.sqrt(total * ratio))
         cut: dict[int, Rect] = {}
         _slice((0.0, 0.0, width, snap(total / width)), areas, cut)

@@ -82,7 +82,9 @@ class RoomPlanner:
             return f"{type_name.lower()}-{n}"
 
         def add_floor(type_name: str, role: str) -> PlanObject:
-            asset = self.cat.pick_asset(type_name, rng)
+            # sized like the type's pieces in iTHOR rooms of the type: a bathroom's counter is a vanity, not an island
+            like = () if self.settings.as_stored else self.cat.ithor_footprints(type_name, room_type)
+            asset = self.cat.pick_asset_like(type_name, rng, like)
             obj = PlanObject(id=new_id(type_name), type=type_name, size=Size(x=asset.size[0], y=asset.size[1],
                                                                               z=asset.size[2]), role=role)
             floor.append(obj)

@@ -150,6 +150,21 @@ class Catalogue:
             return self.host(name).rooms.get(spec.ithor, {}).get("mean_count", 1.0)
         return 1.0
 
+    def ithor_footprints(self, name: str, room_type: str) -> tuple[tuple[float, float], ...]:
+        """The footprints (longer side, shorter side, metres) of the type's pieces in the iTHOR rooms of this type;
+        none where iTHOR has no room of the type."""
+        spec = ROOM_SPECS[room_type]
+        return _footprints(spec.ithor, name) if spec.ithor is not None else ()
+
+    def pick_asset_like(self, name: str, rng: random.Random, footprints: tuple[tuple[float, float], ...]) -> Asset:
+        """A real asset of the type sized like one of `footprints` drawn at random (the asset nearest it, turned
+        either way); any asset when there are none."""
+        if not footprints:
+            return self.pick_asset(name, rng)
+        long, short = rng.choice(footprints)
+        return min(self.host(name).assets, key=lambda a: (abs(max(a.size[0], a.size[2]) - long)
+                                                           + abs(min(a.size[0], a.size[2]) - short), a.asset_id))
+
     def room_stats_given(self, name: str, room_type: str, other: str, with_other: bool) -> tuple[float, float]:
         """`room_presence` and `room_count` of the type among the iTHOR rooms of this type that hold `other` (or,
         `with_other` False, that do not): chairs come with a dining table. The plain figures where iTHOR has no
@@ -170,6 +185,12 @@ def ithor_scenes() -> list[dict]:
     """The 120 hand-designed iTHOR rooms: each room's type and its objects' types, poses and sizes."""
     raw = resources.files("models").joinpath("data/ithor_scenes.jsonl.gz").read_bytes()
     return [json.loads(line) for line in gzip.decompress(raw).decode().splitlines() if line]
+
+
+@cache
+def _footprints(room_type: str, name: str) -> tuple[tuple[float, float], ...]:
+    return tuple((max(o["size"][0], o["size"][2]), min(o["size"][0], o["size"][2])) for s in ithor_scenes()
+                 if s["room_type"] == room_type for o in s["objects"] if o["type"] == name)
 
 
 @cache
