@@ -42,7 +42,7 @@ class Generation:
     scene: Scene
 
 
-PASSABLE_TRIES = 4  # layouts tried for an apartment's room until one keeps its doors joined (`place_passable`)
+PASSABLE_TRIES = 4  # layouts tried for a room with several doors until one keeps them joined (`place_passable`)
 
 
 class Pipeline:
@@ -74,7 +74,7 @@ class Pipeline:
                             observer: StepObserver | None = None) -> Generation:
         room_plan = self.planner.plan(graph, seed=seed, plan_id=f"scene-{seed}")
         plan = self.writer.write(room_plan)
-        layout = self.place(plan, seed, solver, observer)
+        layout = self.place_passable(plan, seed, solver, observer)
         scene = assemble_scene(room_plan, layout, graph, seed, plan.constraints)
         return Generation(graph, room_plan, plan, layout, scene)
 
@@ -90,11 +90,12 @@ class Pipeline:
 
     def place_passable(self, plan: ConstraintPlan, seed: int = 0, solver: str | None = None,
                        observer: StepObserver | None = None) -> Layout:
-        """`place` for a room of an apartment: the robot may have to cross it from one door to another, which no
-        placer is asked to keep open (Key_NAV asks for the task objects, from any door). While its furniture cuts
-        a door off, the room is placed again with the next seed, up to PASSABLE_TRIES in all; if none keeps its
-        doors joined, the first layout, with a warning. The `observer` sees the kept layout's steps; its timing
-        counts every try."""
+        """`place` for a room with several doors: the robot may have to cross it from one door to another (a room of
+        an apartment), or enters by one of them and must reach every task object from there (a single room), which
+        no placer is asked for (Key_NAV asks for the task objects, from any door). While its furniture cuts a door
+        off, the room is placed again with the next seed, up to PASSABLE_TRIES in all; if none keeps its doors
+        joined, the first layout, with a warning. The layout records the seed it kept; the `observer` sees its
+        steps; its timing counts every try."""
         tries = []
         for k in range(PASSABLE_TRIES if len(plan.room.doors) > 1 else 1):
             steps: list = []

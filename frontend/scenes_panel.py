@@ -137,11 +137,12 @@ class ScenesPanel:
             s.solver.value = stored["solver"]
 
     def _replayable(self, gen: Generation, observer) -> Generation:
-        """A stored scene has no recorded steps: re-run its placer with the stored seed for the order and
-        candidates of each step; the stored layout (with the designer's moves) stays what is shown."""
+        """A stored scene has no recorded steps: re-run its placer with the seed of its layout (the stored seed, or
+        the next one the placer kept where a layout cut a door off) for the order and candidates of each step; the
+        stored layout (with the designer's moves) stays what is shown."""
         s = self.session
         with contextlib.suppress(Exception):  # a solver that no longer exists: the scene opens without replay
-            s.pipeline.place(gen.plan, int(s.seed.value), s.solver.value, observer)
+            s.pipeline.place(gen.plan, gen.layout.seed, s.solver.value, observer)
         return gen
 
     def download(self, kind: str) -> None:

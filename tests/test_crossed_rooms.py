@@ -109,3 +109,35 @@ def test_restore_access_rejoins_a_door_cut_off_in_a_crossed_room(monkeypatch):
     assert cut and all(moved and after == [] for _, moved, after, _ in cut)
     assert all(why == ["clearing the robot's way to the task objects and doors"] * len(moved)
                for _, moved, _, why in cut)
+
+
+def test_a_single_room_with_two_doors_is_placed_again_until_they_are_joined(monkeypatch):
+    """ALFRED's "Put a salt shaker in a drawer next to the oven." in a living room (seed 19, the vrpose bench's): the
+    first layout splits the room between its two doors, the robot enters by the door on the drawer's side and cannot
+    reach the salt shaker; the room is placed again, and the layout it keeps (seed 21) joins them."""
+    import app.pipeline as pipeline_module
+    from app.pipeline import Pipeline
+    from models.energy.navigation import doors_joined
+    from models.exports.procthor_house import to_house
+    from models.interaction import check_plan, robot_plan
+    from models.scene.assemble import footprint_boxes
+    from models.values import TaskGraph
+
+    graph = TaskGraph.model_validate({
+        "instruction": "Put a salt shaker in a drawer next to the oven.", "room_type": "living room",
+        "task_type": "pick_and_place_simple", "relations": [["SaltShaker", "placed_at", "Drawer"]],
+        "objects": [{"type": "SaltShaker", "roles": ["key"]}, {"type": "Drawer", "roles": ["key", "anchor"]}]})
+    pipeline, default_tries = Pipeline(solver="plan2place"), pipeline_module.PASSABLE_TRIES
+
+    def generated(tries: int):
+        monkeypatch.setattr(pipeline_module, "PASSABLE_TRIES", tries)
+        gen = pipeline.generate_from_graph(graph, seed=19)
+        house = to_house(gen.scene)
+        joined = doors_joined(gen.plan.room, footprint_boxes(gen.layout.placements))
+        return gen.layout, joined, check_plan(house, robot_plan(gen.scene, house), graph).ok
+
+    layout, joined, goal = generated(1)
+    assert len(layout.warnings) == 1 and "cuts one of the room's doors off" in layout.warnings[0]
+    assert (layout.seed, joined, goal) == (19, False, False)
+    layout, joined, goal = generated(default_tries)
+    assert (layout.seed, joined, goal, layout.warnings) == (21, True, True, [])
