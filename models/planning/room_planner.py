@@ -162,9 +162,9 @@ class RoomPlanner:
     def _draw_context(self, room_type: str, rng: random.Random, present: Counter[str]) -> list[str]:
         """Each candidate type with its chance of being in such a room, then as many of it as such rooms hold (1 plus
         a Poisson draw with the iTHOR mean's excess), less those already there; chairs after the dining table, by
-        the rooms with or without one. At most max_context pieces besides
-        the chairs, lamps, armchairs and sofas (which groups seat; as many as drawn), the first of each type before any
-        second; topped up by frequency below min_context."""
+        the rooms with or without one. At most max_context pieces besides the chairs, lamps, armchairs and sofas
+        (which groups seat; as many as drawn), the first of each type before any second; topped up by frequency
+        below min_context."""
         weights = self._candidates(room_type)
         tied = [n for n in sorted(weights) if SEATED_BY.get(n) in weights]  # drawn once their root's draw is known
         drawn: list[tuple[int, float, str]] = []
