@@ -111,16 +111,17 @@ def test_restore_access_rejoins_a_door_cut_off_in_a_crossed_room(monkeypatch):
                for _, moved, _, why in cut)
 
 
-def test_a_single_room_with_two_doors_is_placed_again_until_they_are_joined(monkeypatch):
+def test_a_single_room_with_two_doors_is_kept_passable(monkeypatch):
     """ALFRED's "Put a salt shaker in a drawer next to the oven." in a living room (seed 19, the vrpose bench's): the
-    first layout splits the room between its two doors, the robot enters by the door on the drawer's side and cannot
-    reach the salt shaker; the room is placed again, and the layout it keeps (seed 21) joins them."""
+    room planner marks a single room with two doors crossed, and Plan2Place's first layout keeps them joined. Without
+    the flag, that layout splits the room between its doors, the robot (entering by the door on the drawer's side)
+    cannot reach the salt shaker, and the pipeline's check places the room again until a layout (seed 21) joins them."""
     import app.pipeline as pipeline_module
     from app.pipeline import Pipeline
     from models.energy.navigation import doors_joined
     from models.exports.procthor_house import to_house
     from models.interaction import check_plan, robot_plan
-    from models.scene.assemble import footprint_boxes
+    from models.scene.assemble import assemble_scene, footprint_boxes
     from models.values import TaskGraph
 
     graph = TaskGraph.model_validate({
@@ -129,15 +130,18 @@ def test_a_single_room_with_two_doors_is_placed_again_until_they_are_joined(monk
         "objects": [{"type": "SaltShaker", "roles": ["key"]}, {"type": "Drawer", "roles": ["key", "anchor"]}]})
     pipeline, default_tries = Pipeline(solver="plan2place"), pipeline_module.PASSABLE_TRIES
 
-    def generated(tries: int):
-        monkeypatch.setattr(pipeline_module, "PASSABLE_TRIES", tries)
-        gen = pipeline.generate_from_graph(graph, seed=19)
-        house = to_house(gen.scene)
-        joined = doors_joined(gen.plan.room, footprint_boxes(gen.layout.placements))
-        return gen.layout, joined, check_plan(house, robot_plan(gen.scene, house), graph).ok
+    def judged(layout):
+        scene = assemble_scene(gen.room_plan, layout, graph, 19, gen.plan.constraints)
+        house = to_house(scene)
+        joined = doors_joined(gen.plan.room, footprint_boxes(layout.placements))
+        return layout.seed, joined, check_plan(house, robot_plan(scene, house), graph).ok
 
-    layout, joined, goal = generated(1)
-    assert len(layout.warnings) == 1 and "cuts one of the room's doors off" in layout.warnings[0]
-    assert (layout.seed, joined, goal) == (19, False, False)
-    layout, joined, goal = generated(default_tries)
-    assert (layout.seed, joined, goal, layout.warnings) == (21, True, True, [])
+    gen = pipeline.generate_from_graph(graph, seed=19)
+    assert gen.plan.room.crossed and len(gen.plan.room.doors) == 2
+    assert judged(gen.layout) == (19, True, True) and gen.layout.warnings == []
+    unflagged = gen.plan.model_copy(update={"room": gen.plan.room.model_copy(update={"crossed": None})})
+    monkeypatch.setattr(pipeline_module, "PASSABLE_TRIES", 1)
+    once = pipeline.place_passable(unflagged, 19)
+    assert judged(once) == (19, False, False) and "cuts one of the room's doors off" in once.warnings[0]
+    monkeypatch.setattr(pipeline_module, "PASSABLE_TRIES", default_tries)
+    assert judged(pipeline.place_passable(unflagged, 19)) == (21, True, True)

@@ -141,6 +141,8 @@ class RoomPlanner:
         floor = self._fit_floor(floor, surface, room_type, keep)
         min_area = sum(o.size.x * o.size.z for o in floor) / FLOOR_FILL_LIMIT
         room = make_room(room_type, rng, min_area=min_area, size_scale=self.settings.size_scale)
+        if len(room.doors) > 1 and not self.settings.as_stored:  # the robot enters by one door: keep the others joined
+            room = room.model_copy(update={"crossed": True})
         kept = {o.id for o in floor}
         surface = [s for s in surface if s.parent in kept]
         return RoomPlan(id=plan_id or f"plan-{seed}", room=room, objects=floor, surface_objects=surface,

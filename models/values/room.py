@@ -31,7 +31,9 @@ class Room(Value):
     wall_height: float | None = None
     floor_material: str | None = None
     wall_material: str | None = None
-    crossed: bool | None = None  # True: the robot walks through it door to door (an apartment's); keep them joined
+    # True: a room with several doors the robot may walk between (an apartment's; a single room's, which it enters by
+    # one): Plan2Place keeps them joined
+    crossed: bool | None = None
 
     def wall_length(self, wall: str) -> float:
         return self.width if wall in ("south", "north") else self.depth
