@@ -2,9 +2,10 @@
 strip connected to a doorway cell), on the navigation grid of one room: what the repairs restore and what a
 placer's reach guard keeps (`Episode.guarded`, `Episode.first_kept`).
 
-In a room the robot crosses (`Room.crossed`, an apartment's room with several doors) its other doors are wanted
-too: the robot starts in the first doorway, and each other door it cannot reach counts as a task object out of
-reach, under a gate's id (`GATE`), so that the same guard and repairs keep the way through the room open."""
+In a room the robot crosses (`Room.crossed`: a room with several doors, an apartment's or a single room's) its other
+doors are wanted too: the robot starts in the first doorway, and each other door it cannot reach counts as a task
+object out of reach, under a gate's id (`GATE`), so that the same guard and repairs keep the way through the room
+open."""
 
 from __future__ import annotations
 

@@ -188,15 +188,24 @@ def ithor_scenes() -> list[dict]:
 
 
 @cache
+def _ithor_rooms() -> dict[str, tuple[tuple[tuple[str, float, float], ...], ...]]:
+    """Room type -> each iTHOR room of the type as its objects' (type, longer side, shorter side), read once."""
+    rooms: dict[str, list] = {}
+    for s in ithor_scenes():
+        rooms.setdefault(s["room_type"], []).append(tuple(
+            (o["type"], max(o["size"][0], o["size"][2]), min(o["size"][0], o["size"][2])) for o in s["objects"]))
+    return {room_type: tuple(objs) for room_type, objs in rooms.items()}
+
+
+@cache
 def _footprints(room_type: str, name: str) -> tuple[tuple[float, float], ...]:
-    return tuple((max(o["size"][0], o["size"][2]), min(o["size"][0], o["size"][2])) for s in ithor_scenes()
-                 if s["room_type"] == room_type for o in s["objects"] if o["type"] == name)
+    return tuple((long, short) for objs in _ithor_rooms().get(room_type, ()) for t, long, short in objs if t == name)
 
 
 @cache
 def _stats_given(room_type: str, name: str, other: str, with_other: bool) -> tuple[float, float] | None:
-    counts = [sum(o["type"] == name for o in s["objects"]) for s in ithor_scenes()
-              if s["room_type"] == room_type and any(o["type"] == other for o in s["objects"]) == with_other]
+    counts = [sum(t == name for t, _, _ in objs) for objs in _ithor_rooms().get(room_type, ())
+              if any(t == other for t, _, _ in objs) == with_other]
     holding = [n for n in counts if n]
     return (round(len(holding) / len(counts), 3), round(statistics.mean(holding), 3) if holding else 1.0) \
         if counts else None
