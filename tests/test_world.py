@@ -1,6 +1,13 @@
 import pytest
 
+from models.values import TaskGraph
 from models.world import ROOM_TYPES, UnknownRoomType, catalogue, normalise_room_type
+
+
+def apple_task(room: str) -> TaskGraph:
+    """A one-object task in a room of the type: what the room planner adds around it is what the tests measure."""
+    return TaskGraph.model_validate({"instruction": "Pick up the apple", "room_type": room, "task_type":
+                                     "pick_and_place_simple", "objects": [{"type": "Apple", "roles": ["key"]}]})
 
 
 @pytest.mark.parametrize("phrase,expected", [
@@ -83,7 +90,6 @@ def test_every_planned_room_has_the_furniture_that_makes_it_its_type():
     in every iTHOR room of the type (the authored prior's 1.0 for the others). The stored datasets opt out."""
     from models.planning import RoomPlanner
     from models.planning.room_planner import RoomPlannerSettings
-    from models.values import TaskGraph
     from models.world.rooms import AUTHORED_ROOM_PRIORS, ROOM_SPECS
 
     cat = catalogue()
@@ -93,8 +99,7 @@ def test_every_planned_room_has_the_furniture_that_makes_it_its_type():
         for t in spec.defining:
             prior = cat.room_presence(t, room) if spec.ithor else AUTHORED_ROOM_PRIORS[room][t]
             assert prior == 1.0 and cat.is_floor_object(t), (room, t)
-        graph = TaskGraph.model_validate({"instruction": "Pick up the apple", "room_type": room, "task_type":
-                                          "pick_and_place_simple", "objects": [{"type": "Apple", "roles": ["key"]}]})
+        graph = apple_task(room)
         for seed in range(12):
             for planner in (RoomPlanner(), crowded):
                 types = [o.type for o in planner.plan(graph, seed).objects]
@@ -112,15 +117,13 @@ def test_planned_rooms_hold_each_type_about_as_often_as_ithor_rooms():
 
     from models.planning import RoomPlanner
     from models.planning.room_planner import RoomPlannerSettings
-    from models.values import TaskGraph
 
     cat = catalogue()
     seeds = range(120)
     for room, name in [("bedroom", "Bed"), ("bedroom", "SideTable"), ("bathroom", "SideTable"),
                        ("bedroom", "FloorLamp"), ("living room", "ArmChair"),
                        ("living room", "SideTable"), ("kitchen", "Chair")]:
-        graph = TaskGraph.model_validate({"instruction": "Pick up the apple", "room_type": room, "task_type":
-                                          "pick_and_place_simple", "objects": [{"type": "Apple", "roles": ["key"]}]})
+        graph = apple_task(room)
         ithor = cat.room_presence(name, room) * cat.room_count(name, room)
 
         def mean(planner):
@@ -138,10 +141,8 @@ def test_chairs_no_table_or_desk_seats_stand_alone_one_at_most():
 
     from models.planning import RoomPlanner
     from models.planning.room_planner import RoomPlannerSettings
-    from models.values import TaskGraph
 
-    graph = TaskGraph.model_validate({"instruction": "Pick up the apple", "room_type": "living room", "task_type":
-                                      "pick_and_place_simple", "objects": [{"type": "Apple", "roles": ["key"]}]})
+    graph = apple_task("living room")
 
     def lone_chairs(planner) -> list[int]:
         rooms = [Counter(o.type for o in planner.plan(graph, s).objects) for s in range(60)]
@@ -159,7 +160,6 @@ def test_a_living_room_with_a_dining_table_seats_as_many_chairs_as_ithor_ones_do
     from collections import Counter
 
     from models.planning import RoomPlanner
-    from models.values import TaskGraph
     from models.world.catalogue import ithor_scenes
 
     ithor = [Counter(o["type"] for o in s["objects"]) for s in ithor_scenes() if s["room_type"] == "living room"]
@@ -169,8 +169,7 @@ def test_a_living_room_with_a_dining_table_seats_as_many_chairs_as_ithor_ones_do
     assert catalogue().room_stats_given("Chair", "bedroom", "DiningTable", False) == \
         (catalogue().room_presence("Chair", "bedroom"), catalogue().room_count("Chair", "bedroom"))
 
-    graph = TaskGraph.model_validate({"instruction": "Pick up the apple", "room_type": "living room", "task_type":
-                                      "pick_and_place_simple", "objects": [{"type": "Apple", "roles": ["key"]}]})
+    graph = apple_task("living room")
     rooms = [Counter(o.type for o in RoomPlanner().plan(graph, s).objects) for s in range(120)]
     seated = [c["Chair"] for c in rooms if c["DiningTable"]]
     alone = [c["Chair"] for c in rooms if not c["DiningTable"]]
@@ -185,13 +184,11 @@ def test_a_piece_is_sized_like_those_of_its_type_in_ithor_rooms_of_the_type():
 
     from models.planning import RoomPlanner
     from models.planning.room_planner import RoomPlannerSettings
-    from models.values import TaskGraph
 
     cat = catalogue()
     for room, name in [("bathroom", "CounterTop"), ("bedroom", "Dresser"), ("living room", "Dresser")]:
         ithor = statistics.median(long for long, _ in cat.ithor_footprints(name, room))
-        graph = TaskGraph.model_validate({"instruction": "Pick up the apple", "room_type": room, "task_type":
-                                          "pick_and_place_simple", "objects": [{"type": "Apple", "roles": ["key"]}]})
+        graph = apple_task(room)
 
         def median_side(planner) -> float:
             return statistics.median(max(o.size.x, o.size.z) for s in range(80) for o in planner.plan(graph, s).objects
