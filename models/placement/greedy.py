@@ -275,20 +275,33 @@ def place_stepwise(plan: ConstraintPlan, rng: np.random.Generator, choose: Choos
     step's reason); each step is observed; then, with `repair`, the repairs, the episode solved again with the
     objects of broken constraints first, if that is better (models.placement.reorder), and, with `keep_reach`,
     solved again with every task object kept reachable, if that is better (models.placement.reach_kept); each from
-    the same random state. All of it on one BLAS thread (models.placement.blas)."""
+    the same random state. Where that leaves an object out, with `repair`, all of it again from another random
+    state, if that is better (models.placement.restarts). All of it on one BLAS thread (models.placement.blas)."""
     with blas.one_blas_thread():
         start = copy.deepcopy(rng)
-        ep = _steps(plan, rng, choose, fixed, observer, ())
+        ep = _solved(plan, rng, choose, fixed, observer, repair, keep_reach)
         if repair:
-            from models.placement.reach_kept import kept_step, solve_keeping  # they build on this module's Episode
-            from models.placement.reorder import broken_first
-            from models.placement.repair import repair as repair_layout
-            first_solve = ep
-            ep = broken_first(ep, repair_layout, lambda first, seen: _steps(plan, copy.deepcopy(start), choose, fixed,
-                                                                             seen, first, first_solve), observer)
-            if keep_reach:
-                ep = solve_keeping(ep, repair_layout, lambda first, seen: _steps(
-                    plan, copy.deepcopy(start), choose, fixed, seen, first, first_solve, kept_step), observer)
+            from models.placement.restarts import drawn, restarted, salted  # they build on this module's Episode
+            ep = restarted(ep, lambda salt, seen: _solved(plan, salted(start, salt), drawn(choose), fixed, seen,
+                                                          repair, keep_reach), observer)
+    return ep
+
+
+def _solved(plan: ConstraintPlan, rng: np.random.Generator, choose: Choose, fixed: Fixed | None,
+            observer: StepObserver | None, repair: bool, keep_reach: bool) -> Episode:
+    """`place_stepwise`'s episode from the random state `rng`, without the restarts."""
+    start = copy.deepcopy(rng)
+    ep = _steps(plan, rng, choose, fixed, observer, ())
+    if repair:
+        from models.placement.reach_kept import kept_step, solve_keeping  # they build on this module's Episode
+        from models.placement.reorder import broken_first
+        from models.placement.repair import repair as repair_layout
+        first_solve = ep
+        ep = broken_first(ep, repair_layout, lambda first, seen: _steps(plan, copy.deepcopy(start), choose, fixed,
+                                                                         seen, first, first_solve), observer)
+        if keep_reach:
+            ep = solve_keeping(ep, repair_layout, lambda first, seen: _steps(
+                plan, copy.deepcopy(start), choose, fixed, seen, first, first_solve, kept_step), observer)
     return ep
 
 
