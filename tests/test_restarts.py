@@ -51,12 +51,15 @@ def test_the_object_a_seed_leaves_out_is_placed_by_a_solve_from_another_state(pi
 
 @pytest.mark.parametrize("pid", ["dense-00388", "dense-01172", "dense-01519", "dense-01643"])
 def test_a_kept_solve_places_no_fewer_reaches_no_fewer_and_ends_no_higher_by_the_exact_judge(pid, monkeypatch):
-    plan = DENSE[pid]
+    plan, changed = DENSE[pid], 0
     for seed in range(2):
         first, kept = without_restarts(plan, seed, monkeypatch), solved(plan, seed)
         (before, energy, out), (after, new_energy, new_out) = judged(plan, first), judged(plan, kept)
         assert after.cnt >= before.cnt and new_out <= out and new_energy <= energy + 1e-9
-        assert better(kept, first) or kept.layout("p", 0, 0.0) == first.layout("p", 0, 0.0)
+        if kept.layout("p", 0, 0.0) != first.layout("p", 0, 0.0):
+            changed += 1
+            assert better(kept, first) and new_energy < energy
+    assert changed  # a solve from another state was kept in one seed at least
 
 
 def test_a_solve_that_places_fewer_or_ends_no_lower_is_not_kept(monkeypatch):

@@ -1,8 +1,8 @@
 """Solving again from another random state where objects are left out (not in the paper): a step-wise placer's
 episode, repairs and second solves included, follows from its random state (Plan2Place's candidate subsets, the
 ties), and in a crowded room one state can fill the floor an object needs where another leaves it room. In the iTHOR
-kitchen FloorPlan27 the 2.9 m counter is left out in three of five seeds, each with every constraint met among the
-six others, and placed in the other two.
+kitchen FloorPlan27, without this, the 2.9 m counter was left out in three of five seeds (every constraint met among
+the six others) and placed in the other two.
 
 `restarted`: while the episode leaves an object out, the placer solves the plan again, start to end (repairs and
 second solves included), from another state drawn from the same seed (`salted`), `RESTARTS` times at most, each pose
