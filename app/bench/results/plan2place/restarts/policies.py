@@ -1,5 +1,6 @@
 """How many solves from another random state to make, replayed from `tries.py`'s record (`tries-dense.json`), without
-solving again: at most R tries (`full`: the whole solve; `cheap`: steps and repairs only), stopping at the first kept
+solving again: at most R tries (`full`: the whole solve; `no_reorder`: without its broken-first solve; `cheap`:
+steps and repairs only), stopping at the first kept
 one or going on while an object is still left out; a try is kept by models.placement.restarts' rule. Prints the
 objects placed (CNT, x 100) and energy against no restart, and the time against no restart (mean, and the median
 run); written to `policies.txt`:
@@ -44,7 +45,7 @@ if __name__ == "__main__":
     print(f"{len(ROWS)} `dense` diagnosis runs, {sum(bool(r['full']) for r in ROWS)} with an object left out\n")
     print("| tries | at most | go on after a kept one | kept | CNT | energy | time x (mean) | median run x |")
     print("| --- | --- | --- | --- | --- | --- | --- | --- |")
-    for kind in ("full", "cheap"):
+    for kind in ("full", "no_reorder", "cheap"):
         for most in (1, 2, 3):
             for go_on in (False, True):
                 print(replay(kind, most, go_on))

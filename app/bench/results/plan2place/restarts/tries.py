@@ -1,7 +1,8 @@
 """Every try of a solve from another random state on the `dense` diagnosis plans (20 x 2 seeds), Plan2Place without
-restarts first, then, where it leaves an object out, three tries from salts 1-3 in two forms: the whole solve
-(`full`: steps, repairs, second solves, as models.placement.restarts runs it) and only the steps and repairs
-(`cheap`); each with its time, objects placed, task objects out of reach and energy. `policies.py` then replays how
+restarts first, then, where it leaves an object out, three tries from salts 1-3 in three forms: the whole solve
+(`full`: steps, repairs, second solves, as models.placement.restarts runs it), the same without the broken-first
+solve (`no_reorder`: models.placement.reorder.ROUNDS = 0) and only the steps and repairs (`cheap`); each with its
+time, objects placed, task objects out of reach and energy. `policies.py` then replays how
 many tries to make and which to keep, without solving again. Writes `tries-dense.json` here:
 
     PYTHONPATH=. python app/bench/results/plan2place/restarts/tries.py
@@ -13,7 +14,7 @@ from pathlib import Path
 import numpy as np
 
 from app.bench.gates import diagnosis_plans
-from models.placement import blas, restarts
+from models.placement import blas, reorder, restarts
 from models.placement.greedy import _solved, _steps
 from models.placement.plan2place import policy
 from models.placement.polish import Standing
@@ -42,12 +43,17 @@ def summary(ep, t: float) -> dict:
 
 
 def tries(plan, seed: int, choose) -> dict:
-    start, out = np.random.default_rng(seed), {"full": [], "cheap": []}
+    start, out = np.random.default_rng(seed), {"full": [], "no_reorder": [], "cheap": []}
     with blas.one_blas_thread():
         for salt in (1, 2, 3):
             t = time.perf_counter()
             ep = _solved(plan, salted(start, salt), drawn(choose), None, None, True, True)
             out["full"].append(summary(ep, time.perf_counter() - t))
+            reorder.ROUNDS, rounds = 0, reorder.ROUNDS
+            t = time.perf_counter()
+            ep = _solved(plan, salted(start, salt), drawn(choose), None, None, True, True)
+            out["no_reorder"].append(summary(ep, time.perf_counter() - t))
+            reorder.ROUNDS = rounds
             t = time.perf_counter()
             ep = _steps(plan, salted(start, salt), drawn(choose), None, None, ())
             repair(ep, None)
@@ -61,6 +67,6 @@ if __name__ == "__main__":
         for seed in range(2):
             ep, t0, choose = first_solve(plan, seed)
             rows.append({"plan": plan.id, "seed": seed, "t0": t0, "base": summary(ep, t0),
-                         **(tries(plan, seed, choose) if ep.failed else {"full": [], "cheap": []})})
+                         **(tries(plan, seed, choose) if ep.failed else {"full": [], "no_reorder": [], "cheap": []})})
             print(plan.id, seed, rows[-1]["base"], flush=True)
     (Path(__file__).parent / "tries-dense.json").write_text(json.dumps(rows))
