@@ -26,8 +26,13 @@ from models.placement.restarts import drawn, salted
 def first_solve(plan, seed):
     """Plan2Place's episode without restarts, its time, and the `choose` it placed with."""
     got, stepwise = {}, policy.place_stepwise
-    policy.place_stepwise = lambda plan, rng, choose, *a: got.setdefault("choose", choose) and stepwise(plan, rng,
-                                                                                                          choose, *a)
+
+    def keeping_choose(plan, rng, choose, *rest):
+        """`place_stepwise`, remembering the `choose` that `policy.place` builds inside."""
+        got["choose"] = choose
+        return stepwise(plan, rng, choose, *rest)
+
+    policy.place_stepwise = keeping_choose
     try:
         t = time.perf_counter()
         weights = policy.shipped_weights()
