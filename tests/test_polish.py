@@ -14,7 +14,7 @@ from models.placement.greedy import GreedySolver, hard_filter
 from models.placement.groups import regroup
 from models.placement.habits import keep_companions
 from models.placement.moves import displacements
-from models.constraints.evaluate import placement
+from models.constraints.evaluate import Poses, placement, relation_met
 from models.placement.candidates import poses_of
 from models.placement.polish import (ALLOWANCE, MAKE_WAY_POSES, MORE_MET, Standing, broken, crowded, met, met_among,
                                      polish)
@@ -170,11 +170,12 @@ def test_the_polish_compares_a_move_with_the_exact_energy_of_the_layout_it_start
 
 @pytest.mark.parametrize("pid", ["seen-00002", "seen-00037"])
 def test_the_count_over_every_pose_agrees_with_the_count_of_the_layout(pid):
-    """`met` over an object's whole grid (its global placement computed once per object) and over some of its
-    poses gives, at the pose it stands on, what the layout's own count (`met_among`) gives."""
+    """`met` over an object's whole grid (its global placement computed once per object, its relations once per
+    pose of the other) and over some of its poses gives, at the pose it stands on, what the layout's own count
+    (`met_among`) gives."""
     plan = SEEN[pid]
     ep = finished(plan)
-    checked = 0
+    checked = relations = 0
     for p in ep.placed:
         obj, others = plan.object(p.id), [q for q in ep.placed if q is not p]
         cands, body = ep.scorer.bodies(obj)
@@ -186,7 +187,27 @@ def test_the_count_over_every_pose_agrees_with_the_count_of_the_layout(pid):
         fresh = placement(name, poses_of(cands, obj, body), plan.room.width, plan.room.depth)[1]
         assert (ep.scorer.placement_met(obj, name) == fresh).all()
         checked += everywhere[at[0]] > 0
-    assert checked  # some object meets something, so the counts are not all zero
+        relations += _relations_kept_agree(ep, p, others)
+    assert checked and relations  # some object meets something, so the counts are not all zero
+
+
+def _relations_kept_agree(ep, p, others) -> int:
+    """Each relation between `p` and `others`, kept over every pose of `p` (`CandidateScorer.relation_met`), is the
+    one computed afresh, and is kept: asked again, the same array; how many were checked."""
+    obj, objects, n = ep.problem.plan.object(p.id), ep.problem.constraints.objects, 0
+    cands, body = ep.scorer.bodies(obj)
+    poses = poses_of(cands, obj, body)
+    for q in others:
+        shape = (q.x, q.z, q.rotation, q.width, q.depth)
+        pairs = [(c.name, False) for c in objects[p.id].relations if c.target == q.id]
+        pairs += [(c.name, True) for c in (objects[q.id].relations if q.id in objects else ()) if c.target == p.id]
+        for name, reverse in pairs:
+            kept = ep.scorer.relation_met(obj, name, shape, reverse)
+            a, b = (Poses.one(*shape), poses) if reverse else (poses, Poses.one(*shape))
+            assert np.array_equal(kept, relation_met(name, a, b))
+            assert ep.scorer.relation_met(obj, name, shape, reverse) is kept
+            n += 1
+    return n
 
 
 def test_the_poses_that_may_meet_more_are_all_the_poses_that_do():

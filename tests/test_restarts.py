@@ -108,6 +108,22 @@ def test_a_drawn_pose_never_cuts_a_task_object_off_where_the_pick_did_not():
     assert drawn_other  # poses other than the pick were drawn
 
 
+def test_the_restarts_share_the_first_solves_plan_only_parts(monkeypatch):
+    """Every solve of a plan, restarts included, reads the plan once and makes its candidates' geometry once."""
+    from models.placement import candidates
+    made, init = [], candidates.CandidateScorer.__init__
+
+    def counting(self, problem, step=None, like=None):
+        made.append(like is None)
+        init(self, problem, step, like)
+
+    monkeypatch.setattr(candidates.CandidateScorer, "__init__", counting)
+    records = []
+    solved(HUMAN[KITCHEN], 1, records.append)
+    assert any(r.restart for r in records)  # a restart ran
+    assert sum(made) == 1 and len(made) > 2
+
+
 def test_a_seed_gives_one_layout():
     plan = HUMAN[BEDROOM]
     assert solved(plan, 4).layout("p", 4, 0.0) == solved(plan, 4).layout("p", 4, 0.0)

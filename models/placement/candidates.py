@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from models.constraints.evaluate import Poses, box_gap, placement, relation, wall_clearance
+from models.constraints.evaluate import Poses, box_gap, placement, relation, relation_met, wall_clearance
 from models.geometry import SweptBoxes, boxes, half_extents, one_box, overlap_many, turn
 from models.placement.problem import DOOR_CLEARANCE, PlacementProblem
 from models.values import PlanObject
@@ -115,6 +115,7 @@ class CandidateScorer:
         self._swept: dict[tuple[float, float], SweptBoxes] = {}
         self._strips: dict[str, tuple[np.ndarray, SweptBoxes]] = {}
         self._placement_met: dict[str, np.ndarray] = {}
+        self._relation_met: dict[tuple, np.ndarray] = {}
 
     def _door_zone(self, wall: str, center: float, width: float) -> list[float]:
         half, c = width / 2 + 0.05, DOOR_CLEARANCE
@@ -198,6 +199,18 @@ class CandidateScorer:
             cands, body = self.bodies(obj)
             self._placement_met[obj.id] = placement(name, poses_of(cands, obj, body), self.width, self.depth)[1]
         return self._placement_met[obj.id]
+
+    def relation_met(self, obj: PlanObject, name: str, other: tuple[float, float, float, float, float],
+                     reverse: bool = False) -> np.ndarray:
+        """Whether each pose of `bodies` meets `obj name other` (`reverse`: `other name obj`), `other` one pose
+        (x, z, rotation, width, depth). Kept per object, relation and pose of the other: the polish counts the
+        constraints met again and again with the same objects where they stand."""
+        key = (obj.id, name, reverse, other)
+        if key not in self._relation_met:
+            cands, body = self.bodies(obj)
+            mine, theirs = poses_of(cands, obj, body), Poses.one(*other)
+            self._relation_met[key] = relation_met(name, theirs, mine) if reverse else relation_met(name, mine, theirs)
+        return self._relation_met[key]
 
     def place(self, obj: PlanObject, x: float, z: float, rotation: float) -> PlacedObject:
         clearance = self.problem.clearance.get(obj.id, 0.0)

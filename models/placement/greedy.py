@@ -77,9 +77,9 @@ class Episode:
 
     def __init__(self, plan: ConstraintPlan, fixed: Fixed | None = None, first: Collection[str] = (),
                  shares: Episode | None = None):
-        """`shares`: an episode of the same plan and kept poses (the first solve, models.placement.reorder) whose
-        plan-only parts this one reuses instead of making them again: the problem read from the plan, the
-        candidates' geometry (`CandidateScorer`'s caches) and the navigation grid of the reach tests."""
+        """`shares`: an episode of the same plan and kept poses (the first solve, to the second solves and the
+        restarts) whose plan-only parts this one reuses instead of making them again: the problem read from the
+        plan, the candidates' geometry (`CandidateScorer`'s caches) and the navigation grid of the reach tests."""
         if shares is None:
             self.problem = PlacementProblem.from_plan(plan, fixed, first)
             self.scorer = CandidateScorer(self.problem)
@@ -282,16 +282,17 @@ def place_stepwise(plan: ConstraintPlan, rng: np.random.Generator, choose: Choos
         ep = _solved(plan, rng, choose, fixed, observer, repair, keep_reach)
         if repair:
             from models.placement.restarts import drawn, restarted, salted  # they build on this module's Episode
+            solved = ep  # each restart shares its plan-only parts (`Episode`'s `shares`)
             ep = restarted(ep, lambda salt, seen: _solved(plan, salted(start, salt), drawn(choose), fixed, seen,
-                                                          repair, keep_reach), observer)
+                                                          repair, keep_reach, solved), observer)
     return ep
 
 
 def _solved(plan: ConstraintPlan, rng: np.random.Generator, choose: Choose, fixed: Fixed | None,
-            observer: StepObserver | None, repair: bool, keep_reach: bool) -> Episode:
-    """`place_stepwise`'s episode from the random state `rng`, without the restarts."""
+            observer: StepObserver | None, repair: bool, keep_reach: bool, shares: Episode | None = None) -> Episode:
+    """`place_stepwise`'s episode from the random state `rng`, without the restarts (`shares`: `Episode`'s)."""
     start = copy.deepcopy(rng)
-    ep = _steps(plan, rng, choose, fixed, observer, ())
+    ep = _steps(plan, rng, choose, fixed, observer, (), shares)
     if repair:
         from models.placement.reach_kept import kept_step, solve_keeping  # they build on this module's Episode
         from models.placement.reorder import broken_first

@@ -33,7 +33,7 @@ from models.energy.vectorised import CandidateEnergy
 from models.energy.weights import WEIGHTS
 from models.geometry import SweptBoxes
 from models.placement.base import PlacementStep, StepObserver
-from models.placement.candidates import PlacedObject, poses_of
+from models.placement.candidates import PlacedObject
 from models.placement.greedy import Episode, hard_filter
 from models.placement.moves import displacements, legal_poses, move_step
 from models.placement.ties import steady
@@ -57,30 +57,21 @@ def met(ep: Episode, oid: str, idx: np.ndarray | None, others: list[PlacedObject
     """For each pose `idx` of `oid` (indices into `ep.scorer.bodies`; None: all): how many constraints that
     involve it are met with `others` where they are (its global placement, its relations to them, theirs to
     it), as the metric counts them."""
-    obj = ep.problem.plan.object(oid)
-    cands, body = ep.scorer.bodies(obj)
-    if idx is not None:
-        cands, body = cands[idx], body[idx]
-    poses = poses_of(cands, obj, body)
+    obj, scorer = ep.problem.plan.object(oid), ep.scorer
     objects = ep.problem.constraints.objects
-    count = np.zeros(len(cands), int)
+    count = np.zeros(len(scorer.bodies(obj)[0]), int)
     if oid in objects:
         oc = objects[oid]
-        ok = ep.scorer.placement_met(obj, oc.placement)
-        count += ok if idx is None else ok[idx]
+        count += scorer.placement_met(obj, oc.placement)
         by_id = {p.id: p for p in others}
         for c in oc.relations:
             if c.target in by_id:
-                count += relation_met(c.name, poses, _pose(by_id[c.target]))
+                count += scorer.relation_met(obj, c.name, _shape(by_id[c.target]))
     for p in others:
         for c in objects[p.id].relations if p.id in objects else ():
             if c.target == oid:
-                count += relation_met(c.name, _pose(p), poses)
-    return count
-
-
-def _pose(p: PlacedObject) -> Poses:
-    return Poses.one(p.x, p.z, p.rotation, p.width, p.depth)
+                count += scorer.relation_met(obj, c.name, _shape(p), reverse=True)
+    return count if idx is None else count[idx]
 
 
 def _key(p: PlacedObject) -> tuple:
