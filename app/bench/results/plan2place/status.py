@@ -1,6 +1,6 @@
 """The issue's targets for Plan2Place, one verdict per set, from the placement bench's stored runs: `met`, `within
-noise` (the paired gap's 95 % interval over plans holds 0, so the bench cannot tell) or `missed`. Each verdict shows
-the figure it rests on. Paired gaps are against the best other solver of the metric, as in targets.md. Reads
+noise` (the paired gap's 95 % interval over plans holds 0, or a time's holds its bound, so the bench cannot tell) or
+`missed`. Each verdict shows the figure it rests on. Paired gaps are against the best other solver of the metric, as in targets.md. Reads
 app/bench/results/placement-*/results.json, writes status.md beside this script:
 python app/bench/results/plan2place/status.py"""
 
@@ -9,7 +9,7 @@ from pathlib import Path
 
 import numpy as np
 
-from app.bench.paired import interval, paired
+from app.bench.paired import DRAWS, interval, paired
 from targets import NOT_COMPARED, RESULTS, SETS, best_other
 
 KEY_NAV_FLOOR = 95.0  # the issue: Key_NAV >= 95 on every set
@@ -37,8 +37,28 @@ def higher(mean: float, lo: float, hi: float, other: str) -> str:
     return f"{verdict} ({mean:+.2f} vs {other})"
 
 
-def p50_ms(rows: list[dict], solver: str) -> float:
-    return 1000 * float(np.median([r["pto"] for r in rows if r["solver"] == solver]))
+def at_most(value: float, lo: float, hi: float, bound: float, text: str) -> str:
+    """An "at most `bound`" target: met when the whole interval is, missed when none of it is."""
+    verdict = "met" if hi <= bound else "missed" if lo > bound else "within noise"
+    return f"{verdict} ({text})"
+
+
+def p50s(rows: list[dict], rng: np.random.Generator) -> tuple[tuple[float, float, float], tuple[float, float, float]]:
+    """Plan2Place's PTO p50 (ms) and its ratio to DFS's p50, each with the 2.5th and 97.5th percentiles over `DRAWS`
+    draws of the plans (every run of a drawn plan): the plans' noise, not the machine's."""
+    runs: dict[str, dict[str, list[float]]] = {"plan2place": {}, "dfs": {}}
+    for r in rows:
+        if r["solver"] in runs:
+            runs[r["solver"]].setdefault(r["plan"], []).append(r["pto"])
+    plans = sorted(runs["plan2place"])
+
+    def at(drawn) -> tuple[float, float]:
+        mine, dfs = (float(np.median([t for p in drawn for t in runs[s][p]])) for s in ("plan2place", "dfs"))
+        return 1000 * mine, mine / dfs
+
+    (ms, ratio), (lo, hi) = at(plans), np.percentile([at(rng.choice(plans, len(plans))) for _ in range(DRAWS)],
+                                                     [2.5, 97.5], axis=0)
+    return (ms, lo[0], hi[0]), (ratio, lo[1], hi[1])
 
 
 def verdicts(rows: list[dict], rng: np.random.Generator) -> list[str]:
@@ -54,13 +74,14 @@ def verdicts(rows: list[dict], rng: np.random.Generator) -> list[str]:
     completed = {(r["plan"], r["seed"]) for r in rows if r["solver"] not in NOT_COMPARED and r["cnt"] == 1}
     avoidable = float(np.mean([(1 - r["cnt"]) * ((r["plan"], r["seed"]) in completed) for r in mine]))
     collisions = sum(r["collisions"] for r in mine)
-    ms, dfs = p50_ms(rows, "plan2place"), p50_ms(rows, "dfs")
+    (ms, *ms_bounds), (ratio, *ratio_bounds) = p50s(rows, rng)
     return [at_least(*gap(rows, "cnt", True, rng)), at_least(*gap(rows, "sr", True, rng)), nav_ok,
             at_least(*gap(rows, "constraint_satisfaction", True, rng)), higher(*gap(rows, "realism", True, rng)),
             f"{'met' if oob == 0 and collisions == 0 else 'missed'} (OOB {100 * oob:.2f}, of it left out "
             f"{100 * left_out:.2f}, {100 * avoidable:.2f} where a baseline placed all; {collisions} collisions)",
-            f"{'met' if ms <= PTO_MS else 'missed'} ({ms:.1f} ms)",
-            f"{'met' if ms <= PTO_TIMES_DFS * dfs else 'missed'} ({ms / dfs:.2f} x)"]
+            at_most(ms, *ms_bounds, PTO_MS, f"{ms:.1f} ms [{ms_bounds[0]:.1f}, {ms_bounds[1]:.1f}]"),
+            at_most(ratio, *ratio_bounds, PTO_TIMES_DFS,
+                    f"{ratio:.2f} x [{ratio_bounds[0]:.2f}, {ratio_bounds[1]:.2f}]")]
 
 
 HEAD = ["CNT >= best", "SR >= best", f"Key_NAV >= {KEY_NAV_FLOOR:.0f} and >= best", "constraints >= best",
@@ -74,12 +95,15 @@ def plans(rows: list[dict]) -> int:
 
 def main() -> str:
     rng = np.random.default_rng(0)
-    lines = ["The issue's targets for Plan2Place, per set, from the placement bench's stored runs (the plans of each set x 5 seeds): "
-             "*met*, *within noise* (the paired gap's 95 % bootstrap interval over plans holds 0) or *missed*; in "
-             "brackets the paired gap to the best other solver of the metric (x 100; positive = Plan2Place better) "
-             "or the figure itself. OOB counts an object left out as outside the room: the cell says how much of it is left-out "
-             "objects, and how much of that is in runs (plan and seed) where one of the baselines (the solvers targets.py compares) placed every object. PTO as "
-             "the bench timed it, two workers sharing the 2-core CPU.", "",
+    lines = ["The issue's targets for Plan2Place, per set, from the placement bench's stored runs (the plans of "
+             "each set x 5 seeds): *met*, *within noise* (the paired gap's 95 % bootstrap interval over plans holds 0) "
+             "or *missed*; in brackets the paired gap to the best other solver of the metric (x 100; positive = "
+             "Plan2Place better) or the figure itself. OOB counts an object left out as outside the room: the cell "
+             "says how much of it is left-out objects, and how much of that is in runs (plan and seed) where one of "
+             "the baselines (the solvers targets.py compares) placed every object. PTO as the bench timed it, two "
+             "workers sharing the 2-core CPU; its interval (in square brackets) is the plans' 95 % bootstrap, not the "
+             "machine's own noise (two runs of the `human` bench on its former 20-plan sample read 1.67 x and 2.09 x "
+             "DFS).", "",
              "| set | plans | " + " | ".join(HEAD) + " |", "| --- | --- |" + " --- |" * len(HEAD)]
     for s in SETS:
         rows = json.loads((RESULTS / f"placement-{s}" / "results.json").read_text())
