@@ -69,6 +69,14 @@ def test_speed_targets_compare_with_dfs_in_the_same_runs(status):
     assert got["pto_ms"] == got["pto_dfs"] == "met"
 
 
+def test_a_time_the_plans_cannot_tell_from_its_bound_is_within_noise(status):
+    """Half the plans at 1.5 x DFS and 6 ms, half at 2.5 x and 12 ms: the p50 over a draw of the plans falls on
+    either side of each bound."""
+    p2p, dfs = {"pto": lambda i: 0.006 if i % 2 else 0.012}, {"pto": lambda i: 0.004 if i % 2 else 0.0048}
+    got = verdicts(status, runs(p2p, dfs, plans=40))
+    assert got["pto_ms"] == got["pto_dfs"] == "within noise"
+
+
 def test_the_readme_shows_the_verdicts_of_the_stored_bench_runs(status):
     readme = (SCRIPTS.parents[3] / "README.md").read_text()
     block = readme.split("<!-- plan2place-status:start -->\n")[1].split("<!-- plan2place-status:end -->")[0]
