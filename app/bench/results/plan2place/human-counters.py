@@ -43,8 +43,8 @@ def supported(scene: dict, counter: dict) -> float:
 def main() -> None:
     scenes = {s["scene"]: s for s in ithor_scenes()}
     runs = json.loads(RUNS.read_text())
-    rows = []
-    for record in load_dataset("human", None):
+    rows, records = [], load_dataset("human", None)
+    for record in records:
         plan = record.plan
         scene = scenes[plan.id.removeprefix("human-")]
         counters = [o for o in scene["objects"] if o["type"] == "CounterTop" and set(o["parents"]) <= {"Floor"}]
@@ -58,7 +58,7 @@ def main() -> None:
             rows.append(f"| {plan.id} | {obj.id} | {obj.size.x:.2f} x {obj.size.z:.2f} | "
                         f"{plan.room.width:.2f} x {plan.room.depth:.2f} | {100 * share:.0f} % | "
                         f"{100 * supported(scene, source):.0f} % | {left_out} of {solved} |")
-    kitchens = sum(1 for r in load_dataset("human", None) if r.plan.room.type == "kitchen")
+    kitchens = sum(1 for r in records if r.plan.room.type == "kitchen")
     lines = [f"Counters of the `human` plans at least {WIDE} m deep both ways: {len(rows)} in {kitchens} kitchens "
              "(models.datasets.hard_sets models each as its bounding box).", "",
              "| plan | counter | box (m) | room (m) | floor the box covers | box with something under or on it | "
