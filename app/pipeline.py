@@ -209,6 +209,13 @@ def generation_of(scene: Scene) -> Generation:
     return Generation(scene.task_graph, rp, plan, layout, scene)
 
 
+def room_generation(apartment: Apartment, k: int) -> Generation:
+    """Room `k` of an apartment (floorplan order) as a single room in its own frame, to edit like one; the edited
+    room goes back with models.scene.apartment.with_room."""
+    return Generation(apartment.task_graph, apartment.plan.room_plans[k], apartment.plans[k], apartment.layouts[k],
+                      apartment.scenes[k])
+
+
 def dump(value) -> str:
     """A value as the JSON of interfaces.md (unset optional fields left out)."""
     return json.dumps(value.model_dump(mode="json", exclude_none=True), indent=2)

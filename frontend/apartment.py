@@ -3,8 +3,11 @@
 The apartment is shown as one Scene in the house frame (every room's objects shifted by the room's
 corner), over every room's floor and walls with a label naming the room, with the robot's path through
 the doors. The placement steps come from the rooms in floorplan order, so the step animation goes room
-by room. Apartments are shown, inspected (a click picks an object), stored as numbered versions (Accept &
-save), reopened and downloaded, not edited (the single-room editing tools stay idle).
+by room. A designer edits one room at a time with the single-room tools (constraints, drags, typed poses,
+turns, re-placing the rest, undo): a click on an object makes its room the one edited, whose Generation
+(room frame) is the session's `gen`; each edit is folded back into the apartment (models.scene.apartment.
+with_room), so the robot's path and Key_NAV through the doors follow it. Task-graph corrections stay
+single-room (the rooms and what goes in each come from the graph: regenerate the apartment instead).
 """
 
 from __future__ import annotations
@@ -12,17 +15,20 @@ from __future__ import annotations
 import contextlib
 import threading
 import time
+from collections.abc import Sequence
 from dataclasses import replace
 
 import numpy as np
 
+from app.pipeline import Generation, room_generation
 from frontend.captions import parser_note
+from frontend.checks import Finding, run_checks
 from frontend.state import Values
 from models.language import InstructionError
 from models.placement import PlacementStep
 from models.planning.apartment_planner import ApartmentError, parse_rooms
 from models.planning.floorplan import FloorplanError
-from models.scene.apartment import house_objects
+from models.scene.apartment import house_objects, with_room
 from models.values import Room, Scene
 from models.values.apartment import Apartment
 
@@ -37,11 +43,33 @@ def house_scene(apartment: Apartment) -> Scene:
                  robot_start=apartment.robot_start, vr_anchor=apartment.vr_anchor, warnings=apartment.warnings)
 
 
+def first_room(apartment: Apartment) -> int:
+    """The room edited first: the anchor's, else the first with objects."""
+    ids = [hr.id for hr in apartment.floorplan.rooms]
+    if apartment.anchor_room in ids:
+        return ids.index(apartment.anchor_room)
+    return next((k for k, plan in enumerate(apartment.plans) if plan.objects), 0)
+
+
 class ApartmentMode:
     def __init__(self, session):
         self.session = session
-        self.current: Apartment | None = None
-        self.scene: Scene | None = None
+        self._house: tuple[Apartment, Scene] | None = None  # the house scene of the apartment it was made for
+
+    @property
+    def current(self) -> Apartment | None:
+        """The apartment on screen (None: a single room is)."""
+        return self.session.state.values.apartment
+
+    @property
+    def scene(self) -> Scene | None:
+        """The apartment on screen as one Scene in the house frame."""
+        a = self.current
+        if a is None:
+            return None
+        if self._house is None or self._house[0] is not a:
+            self._house = (a, house_scene(a))
+        return self._house[1]
 
     def generate(self) -> None:
         """Generate an apartment from the Task tab (rooms from the Rooms field, or drawn from the task)."""
@@ -65,10 +93,11 @@ class ApartmentMode:
     def show(self, apartment: Apartment, steps: list[PlacementStep], scene_id: int | None) -> None:
         """Put an apartment on screen (its steps in the Placement tab); `scene_id`: the stored scene it is."""
         s = self.session
+        k = first_room(apartment)
         with s.lock:
-            self.current, self.scene = apartment, house_scene(apartment)
             s.history.clear()
-            s.state.values = Values(None, tuple(self._in_house(steps)))
+            s.state.values = Values(room_generation(apartment, k), tuple(self._in_house(apartment, steps)),
+                                    apartment=apartment, room=k)
             s.state.shown, s.state.playing, s.state.scene_id = len(steps), False, scene_id
             s.state.seed, s.state.solver = int(s.seed.value), s.solver.value
             s.state.runs += 1
@@ -76,20 +105,85 @@ class ApartmentMode:
         s.picked.visible = False
         s.redraw()
         s.set_view("fit" if s.state.view != "top" else "top")
-        s.checks_md.content = ""
         s.graph_md.content = self.summary()
         s.draw_graph(apartment.task_graph)
-        rooms = [(plan, layout.placements) for plan, layout in zip(apartment.plans, apartment.layouts)]
-        threading.Thread(target=s.energy_curve, args=(rooms, steps, self.room_of, lambda: self.current is apartment),
-                         daemon=True).start()
+        s.constraints.update()
+        s.refresh_checks()
+        threading.Thread(target=s.energy_curve, args=(self.rooms(), s.state.steps, self.room_of,
+                                                      lambda: self.current is apartment), daemon=True).start()
+
+    def rooms(self) -> list[tuple]:
+        """Every room's (plan, placements), for the energy plot."""
+        return [(plan, layout.placements) for plan, layout in zip(self.current.plans, self.current.layouts)]
+
+    def label(self, k: int | None = None) -> str:
+        """A room's name on screen, e.g. `room 2 (kitchen)`; the room edited by default."""
+        k = self.session.state.values.room if k is None else k
+        return f"room {k + 1} ({self.current.floorplan.rooms[k].room.type})"
+
+    def offset(self) -> tuple[float, float]:
+        """Where the room edited has its (0, 0) corner in the house."""
+        hr = self.current.floorplan.rooms[self.session.state.values.room]
+        return hr.x, hr.z
+
+    def focus_on(self, object_id: str) -> None:
+        """Make the room of `object_id` the one edited (a click on one of its objects)."""
+        s = self.session
+        k = int(self.room_of(object_id)[1:]) - 1
+        if k == s.state.values.room:
+            return
+        with s.lock:
+            s.state.values = replace(s.state.values, gen=room_generation(self.current, k), room=k, reference=None)
+        s.constraints.update()
+        s.refresh_checks()
+
+    def fold(self, gen: Generation, steps: Sequence[PlacementStep] | None) -> tuple[Generation, tuple, Apartment]:
+        """An edit of the room edited (`gen`, in its frame, and the placer's `steps` of it, None: no new steps)
+        folded back into the apartment: (the room again as the new apartment has it, the house's steps with the
+        room's new ones where its old ones were, the new apartment)."""
+        s = self.session
+        k = s.state.values.room
+        apartment = with_room(self.current, k, gen.plan, gen.layout, s.state.seed)
+        old = s.state.steps
+        if steps is None:
+            return room_generation(apartment, k), old, apartment
+        room = f"r{k + 1}"
+        first = next((i for i, step in enumerate(old) if self.room_of(step.object_id) == room), len(old))
+        others = [step for step in old if self.room_of(step.object_id) != room]
+        spliced = (*others[:first], *self._in_house(apartment, steps), *others[first:])
+        return room_generation(apartment, k), spliced, apartment
+
+    def findings(self) -> list[Finding]:
+        """Every room's checks (each in its own frame, no metric reference) and the task objects the robot cannot
+        reach through the doors."""
+        a, out = self.current, []
+        for k, (plan, layout, scene) in enumerate(zip(a.plans, a.layouts, a.scenes)):
+            out += [replace(f, text=f"{self.label(k)}: {f.text}") for f in run_checks(plan, layout, scene)[0]
+                    if f.kind != "unreachable"]
+        out += [Finding("unreachable", f"the robot cannot reach task object `{oid}` from the entrance", (oid,))
+                for oid in a.path.unreachable]
+        return out
 
     def save(self) -> None:
-        """Accept & save: a new stored scene, or the next version of the stored apartment on screen. There
-        are no checks to run (they are single-room) and no edits (apartments are not edited)."""
+        """Accept & save: a new stored scene, or the next version of the stored apartment on screen, with the
+        designer's edits; a house that fails a check asks first, as a single room does."""
+        s = self.session
+        findings = self.findings()
+        if findings:
+            listed = "\n".join(f"- ⚠ {f.text}" for f in findings)
+            s.confirm(f"Save an apartment that fails {len(findings)} check(s)?",
+                      f"{listed}\n\nSaving anyway records that the checks were overridden.",
+                      "Save anyway", lambda: self._save(findings))
+            return
+        self._save([])
+
+    def _save(self, overridden: list[Finding]) -> None:
         s, a = self.session, self.current
         name = s.scenes.save_name.value.strip() or a.task_graph.instruction[:60]
-        sid, number = s.scenes.store_version(name, a, [])
-        s.say(f"Saved as scene {sid}, version {number} (“{name}”): an apartment of {len(a.scenes)} rooms.")
+        sid, number = s.scenes.store_version(name, a, s.scenes.edits_with(overridden))
+        s.state.values = replace(s.state.values, edits=())
+        s.say(f"Saved as scene {sid}, version {number} (“{name}”): an apartment of {len(a.scenes)} rooms"
+              + (f", overriding {len(overridden)} failed check(s)." if overridden else "."))
 
     def open(self, apartment: Apartment, scene_id: int, number: int, stored: dict) -> None:
         """Show a stored apartment; the Placement tab replays each room's placer with the stored solver and the
@@ -111,9 +205,9 @@ class ApartmentMode:
         """The room an apartment's object is placed in: its id's prefix (`r2-chair-0` -> `r2`)."""
         return object_id.split("-", 1)[0]
 
-    def _in_house(self, steps: list[PlacementStep]) -> list[PlacementStep]:
+    def _in_house(self, apartment: Apartment, steps: Sequence[PlacementStep]) -> list[PlacementStep]:
         """Each step's candidates moved from its room's frame to the house frame (for the heat-map)."""
-        offsets = {hr.id.split("|")[1]: (hr.x, hr.z) for hr in self.current.floorplan.rooms}
+        offsets = {hr.id.split("|")[1]: (hr.x, hr.z) for hr in apartment.floorplan.rooms}
         out = []
         for step in steps:
             x, z = offsets[self.room_of(step.object_id)[1:]]

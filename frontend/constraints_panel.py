@@ -1,5 +1,5 @@
 """The studio's Constraints tab: an object's constraints as a list, dropdowns to add one or remove its relations,
-the plan's raw constraint text, and the layout's metrics.
+the plan's raw constraint text, and the layout's metrics; in an apartment, those of the room edited.
 
 Every edit goes through the raw text (models.constraints reads and writes it): a text that does not read is not
 applied and its problems are listed; one that removes every relation asks first. An applied edit re-plans from the
@@ -23,6 +23,7 @@ class _Rejected(Exception):
 class ConstraintsPanel:
     def __init__(self, session, gui):
         self.session = session
+        self.scope = gui.add_markdown("")
         self.object = gui.add_dropdown("Object", ("-",))
         self.object.on_update(lambda _: self.show())
         self.listing = gui.add_markdown("")
@@ -37,7 +38,10 @@ class ConstraintsPanel:
 
     def update(self) -> None:
         """Follow the scene on screen: its objects in the dropdowns, its plan's text, the selected object's list."""
-        plan = self.session.state.gen.plan
+        s = self.session
+        plan = s.state.gen.plan
+        self.scope.content = (f"Editing **{s.apartment.label()}** of the apartment; a click on an object in another "
+                              "room edits that room." if s.apartment.current is not None else "")
         ids = tuple(o.id for o in plan.objects) or ("-",)
         self.object.options = self.target.options = ids
         self.text.value = plan.constraints

@@ -56,13 +56,17 @@ class ScenesPanel:
         s = self.session
         gen = s.state.gen
         name = self.save_name.value.strip() or gen.task_graph.instruction[:60]
-        edits = list(s.state.edits)
-        if overridden:
-            edits.append(Edit("override", "checks", [f.text for f in overridden], "saved anyway"))
-        sid, number = self.store_version(name, gen.scene, edits)
+        sid, number = self.store_version(name, gen.scene, self.edits_with(overridden))
         s.state.values = replace(s.state.values, edits=())
         s.say(f"Saved as scene {sid}, version {number} (“{name}”)"
               + (f", overriding {len(overridden)} failed check(s)." if overridden else "."))
+
+    def edits_with(self, overridden: list[Finding]) -> list[Edit]:
+        """The designer's edits to store with a version, and the checks saved over, if any."""
+        edits = list(self.session.state.edits)
+        if overridden:
+            edits.append(Edit("override", "checks", [f.text for f in overridden], "saved anyway"))
+        return edits
 
     def store_version(self, name: str, value: Scene | Apartment, edits: list[Edit]) -> tuple[int, int]:
         """Store as a new scene, or as the next version of the stored scene on screen; select it in the

@@ -249,15 +249,19 @@ class StudioSession:
             self.say(f"**Error:** {type(e).__name__}: {e}")
             return False
         with self.lock:
-            self.apartment.current = None
             if record is not None:
                 self.history.record(record, self.state.values)
             self.state.playing = False
-            self.state.seed, self.state.solver = int(self.seed.value), self.solver.value
-            edits, moved = ((), ()) if fresh else (self.state.edits, self.state.values.moved)
-            reference = self.state.values.reference if keep_reference else None
-            self.state.values = Values(gen, tuple(steps), edits, reference, moved)
+            before = self.state.values
+            apartment = None if fresh else before.apartment
+            if apartment is not None:  # an edit of one room of the apartment on screen
+                gen, steps, apartment = self.apartment.fold(gen, steps)
+            edits, moved = ((), ()) if fresh else (before.edits, before.moved)
+            reference = before.reference if keep_reference else None
+            self.state.values = Values(gen, tuple(steps), edits, reference, moved, apartment,
+                                       None if apartment is None else before.room)
             if fresh:
+                self.state.seed, self.state.solver = int(self.seed.value), self.solver.value
                 self.state.scene_id = None
                 self.history.clear()
             self.state.shown = len(steps)
@@ -270,8 +274,10 @@ class StudioSession:
         self.refresh_panels()
         self.set_unsaved(True)
         placed = len(gen.layout.placements)
+        where = (f"the apartment's {self.apartment.label()}" if self.apartment.current
+                 else f"**{gen.task_graph.room_type}**")
         self.say(f"Scene ready (#{self.state.runs}): {placed} placed, {len(gen.layout.unplaced)} unplaced "
-                 f"({1000 * (time.perf_counter() - started):.0f} ms). Room: **{gen.task_graph.room_type}**."
+                 f"({1000 * (time.perf_counter() - started):.0f} ms). Room: {where}."
                  + "".join(f"\n\n{n}" for n in (unplaced_note(gen.layout.unplaced), note) if n))
         self.checks_md.content = "**Checks:** running…"
         threading.Thread(target=self._after_scene, args=(gen, steps), daemon=True).start()
@@ -284,8 +290,12 @@ class StudioSession:
             if self.state.gen is gen:
                 self.refresh_checks()
             if self.state.gen is gen and not self.view.labels:
-                self.view.draw_labels(gen.scene, self._visible())
-        self.energy_curve([(gen.plan, gen.layout.placements)], steps, one_room, lambda: self.state.gen is gen)
+                self.view.draw_labels(self.displayed(), self._visible())
+        if self.apartment.current is not None:
+            self.energy_curve(self.apartment.rooms(), self.state.steps, self.apartment.room_of,
+                              lambda: self.state.gen is gen)
+        else:
+            self.energy_curve([(gen.plan, gen.layout.placements)], steps, one_room, lambda: self.state.gen is gen)
 
     def redraw(self, labels: bool = True) -> None:
         if self.apartment.current is not None:
@@ -453,7 +463,7 @@ class StudioSession:
 
     def refresh_panels(self) -> None:
         g = self.state.gen.task_graph
-        self.graph_md.content = graph_summary(g)
+        self.graph_md.content = self.apartment.summary() if self.apartment.current else graph_summary(g)
         threading.Thread(target=self.draw_graph, args=(g,), daemon=True).start()
         self.role_object.options = tuple(o.type for o in g.objects) or ("-",)
         self.constraints.update()
@@ -470,7 +480,8 @@ class StudioSession:
             self.state.values = replace(self.state.values, reference=m)
         if gen is self.state.gen:
             self.state.findings = findings
-        self.checks_md.content = summary(findings)
+        where = f"*In {self.apartment.label()}:* " if self.apartment.current is not None else ""
+        self.checks_md.content = where + summary(findings)
         energy = layout_energy(gen.plan, gen.layout.placements).total
         self.constraints.metrics.content = metrics_table(m, energy, habit_checks(gen.plan, gen.layout))
         return findings
@@ -478,12 +489,15 @@ class StudioSession:
     # ---- picking and moving -----------------------------------------------------------------------
 
     def pick(self, object_id: str | None) -> None:
-        """Select an object (a click on it): highlighted, its panel above the tabs, the gizmo on its top
-        (in an apartment: highlighted and described only)."""
-        scene, gen = self.displayed(), self.state.gen
+        """Select an object (a click on it): highlighted, its panel above the tabs, the gizmo on its top (in an
+        apartment its room becomes the one edited)."""
+        scene = self.displayed()
         if scene is None:
             return
         obj = next((o for o in scene.all_objects() if o.id == object_id), None)
+        if obj is not None and self.apartment.current is not None:
+            self.apartment.focus_on(obj.id)
+        gen = self.state.gen
         self.selected = obj.id if obj is not None else None
         self.view.select(self.selected, scene)
         self.picked.visible = obj is not None
@@ -505,6 +519,14 @@ class StudioSession:
                                   f"{obj.z:.2f}) facing {obj.rotation:.0f}°\n\n{flags}")
         self.pose_x.value, self.pose_z.value, self.pose_rot.value = round(obj.x, 3), round(obj.z, 3), obj.rotation
 
+    def _offset(self) -> tuple[float, float]:
+        """Where the room edited has its (0, 0) corner on screen: the house frame in an apartment."""
+        return self.apartment.offset() if self.apartment.current is not None else (0.0, 0.0)
+
+    def _on_screen(self, object_id: str):
+        """An object of the room edited as drawn (in the house frame in an apartment)."""
+        return next(o for o in self.displayed().objects if o.id == object_id)
+
     def _movable(self) -> bool:
         gen = self.state.gen
         return gen is not None and self.selected in {o.id for o in gen.plan.objects}
@@ -516,7 +538,7 @@ class StudioSession:
                 self.controls.remove()
                 self.controls = None
             return
-        obj = next(o for o in self.state.gen.scene.objects if o.id == self.selected)
+        obj = self._on_screen(self.selected)
         where = world(obj.x, obj.y + obj.size.y / 2 + 0.03, obj.z)
         if self.controls is None:
             self.controls = self.client.scene.add_transform_controls(
@@ -531,23 +553,25 @@ class StudioSession:
         if self.selected is None or self.state.gen is None:
             return
         x, _, neg_z = self.controls.position
+        dx, dz = self._offset()
+        room_x, room_z = float(x) - dx, float(-neg_z) - dz
         if event.phase == "end":
             before = self.state.gen.layout.placement(self.selected)
-            self.move_to(self.selected, float(x), float(-neg_z), before.rotation, how="drag")
+            self.move_to(self.selected, room_x, room_z, before.rotation, how="drag")
             return
         now = time.perf_counter()  # while dragging: the object follows, the checks re-run (throttled)
-        obj = next(o for o in self.state.gen.scene.objects if o.id == self.selected)
-        self.view.move(obj.model_copy(update={"x": float(x), "z": float(-neg_z)}))
+        self.view.move(self._on_screen(self.selected).model_copy(update={"x": float(x), "z": float(-neg_z)}))
         if now - self._last_live < LIVE_RESCORE_S:
             return
         self._last_live = now
-        moved = self.pipeline.move(self.state.gen, self.selected, float(x), float(-neg_z),
+        moved = self.pipeline.move(self.state.gen, self.selected, room_x, room_z,
                                    self.state.gen.layout.placement(self.selected).rotation, self.state.seed)
         self.refresh_checks(moved)
 
     def apply_pose(self) -> None:
         if self._movable():
-            self.move_to(self.selected, float(self.pose_x.value), float(self.pose_z.value),
+            dx, dz = self._offset()  # the fields show the pose on screen
+            self.move_to(self.selected, float(self.pose_x.value) - dx, float(self.pose_z.value) - dz,
                          float(self.pose_rot.value), how="typed pose")
 
     def turn(self, degrees: int) -> None:
@@ -556,26 +580,33 @@ class StudioSession:
             self.move_to(self.selected, p.x, p.z, round((p.rotation + degrees) / 90) * 90, how=f"turn {degrees:+d}°")
 
     def move_to(self, object_id: str, x: float, z: float, rotation: float, how: str) -> None:
-        """A designer's move (drag, typed pose or turn): undoable, stored as an edit, checked at once."""
+        """A designer's move (drag, typed pose or turn; `x`, `z` in the room's frame): undoable, stored as an
+        edit, checked at once."""
         with self.lock:
             gen = self.state.gen
             before = gen.layout.placement(object_id)
             new = self.pipeline.move(gen, object_id, x, z, rotation, self.state.seed)
+            apartment = self.state.values.apartment
+            if apartment is not None:
+                new, _, apartment = self.apartment.fold(new, None)
             self.history.record(f"move {object_id}", self.state.values)
             edit = Edit("move", object_id, [before.x, before.z, before.rotation],
                         [round(x, 3), round(z, 3), rotation % 360])
             put = new.layout.placement(object_id)
             moved = tuple(m for m in self.state.values.moved if m[0] != object_id) + ((object_id, pose_of(put)),)
-            self.state.values = replace(self.state.values, gen=new, edits=self.state.edits + (edit,), moved=moved)
-        obj = next(o for o in new.scene.objects if o.id == object_id)
+            self.state.values = replace(self.state.values, gen=new, edits=self.state.edits + (edit,), moved=moved,
+                                        apartment=apartment)
+        obj = self._on_screen(object_id)
         for o in [obj, *obj.children]:
             self.view.move(o)
         self._place_controls()
         if self.selected == object_id:
             self._show_picked(obj)
         findings = self.refresh_checks()
+        if apartment is not None:
+            self.graph_md.content = self.apartment.summary()  # Key_NAV through the doors after the move
         self.set_unsaved(True)
-        self.say(f"Moved `{object_id}` to ({x:.2f}, {z:.2f}) facing {rotation % 360:.0f}° ({how}). "
+        self.say(f"Moved `{object_id}` to ({obj.x:.2f}, {obj.z:.2f}) facing {rotation % 360:.0f}° ({how}). "
                  + (f"⚠ {len(findings)} check(s) fail." if findings else "All checks pass.")
                  + f" {len(self.state.edits)} designer edit(s); **Undo** reverts.")
 
@@ -588,8 +619,8 @@ class StudioSession:
     def replace_rest(self) -> None:
         """Re-plan from the designer's moves (Pipeline.replace_around): undoable, stored as an edit."""
         gen = self.state.gen
-        if gen is None or self.apartment.current is not None:
-            self.say("**Error:** Re-placing around moved objects works on a single room; generate one first.")
+        if gen is None:
+            self.say("**Error:** Nothing to re-place: generate a scene first.")
             return
         moved = self.still_moved()
         if not moved:
@@ -636,8 +667,19 @@ class StudioSession:
 
     # ---- task graph corrections -------------------------------------------------------------------
 
+    def _single_room(self) -> bool:
+        """Task-graph corrections rebuild a single room; an apartment's rooms and their objects come from the graph."""
+        if self.apartment.current is None:
+            return True
+        self.say("**Error:** Task-graph corrections work on a single room. For an apartment, change the instruction "
+                 "or the Rooms field and press **Generate**; edit a room's objects in the Constraints tab or by "
+                 "moving them.")
+        return False
+
     def _graph_edit(self, objects: list[TaskObject], note: str) -> None:
         gen = self.state.gen
+        if not self._single_room():
+            return
         graph = gen.task_graph.model_copy(update={"objects": objects})
         edit = Edit("task-graph", note, [o.model_dump() for o in gen.task_graph.objects],
                     [o.model_dump() for o in objects])
@@ -677,7 +719,7 @@ class StudioSession:
 
     def regenerate(self) -> None:
         gen = self.state.gen
-        if gen is None:
+        if gen is None or not self._single_room():
             return
         with self.busy("Regenerating from the corrected graph") as free:
             if not free:

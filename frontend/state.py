@@ -8,6 +8,7 @@ from app.pipeline import Generation
 from frontend.checks import Finding
 from models.metrics import SceneMetrics
 from models.placement import DEFAULT_SOLVER, PlacementStep
+from models.values.apartment import Apartment
 from studio_db.store import Edit
 
 
@@ -20,6 +21,8 @@ class Values:
     edits: tuple[Edit, ...] = ()
     reference: SceneMetrics | None = None  # the placer's result the designer started from
     moved: tuple[tuple[str, tuple[float, float, float]], ...] = ()  # the designer's moves: id, pose put at
+    apartment: Apartment | None = None  # the apartment on screen; `gen` is then its room being edited
+    room: int | None = None  # that room's index in the apartment's floorplan order
 
 
 @dataclass

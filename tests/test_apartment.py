@@ -19,6 +19,7 @@ from models.geometry import Footprint
 from models.planning.apartment_planner import ApartmentError, ApartmentPlanner, assign_objects, parse_rooms
 from models.planning.floorplan import SlicingFloorplan
 from models.planning.shell import make_room
+from models.scene.apartment import with_room
 from models.values import Opening, Room
 from models.values.apartment import OUTSIDE, Doorway, Floorplan, HouseRoom
 from models.world import catalogue
@@ -201,6 +202,23 @@ def test_key_nav_known_answers_without_a_door_a_blocked_door_or_an_unplaced_obje
     assert unplaced.key_nav == 0.0 and unplaced.e_nav == 1.0
     half = house_navigation(_two_rooms(True), {"bed": BED}, ["bed", "missing"], (2.0, 0.6))
     assert half.key_nav == 0.5  # leaving an object out never scores better than placing it
+
+
+def test_a_room_edited_alone_goes_back_into_the_house_and_the_path_follows(flat):
+    for k, (plan, layout) in enumerate(zip(flat.plans, flat.layouts)):
+        assert with_room(flat, k, plan, layout, seed=3) == flat  # nothing edited: the same apartment
+    k, task = next((k, o.id) for k, plan in enumerate(flat.plans) for o in plan.objects if o.is_task)
+    layout = flat.layouts[k]
+    taken = layout.model_copy(update={"placements": [p for p in layout.placements if p.id != task]})
+    edited = with_room(flat, k, flat.plans[k], taken, seed=3)
+    assert task in edited.path.unreachable and edited.key_nav < flat.key_nav
+    assert any(task in w for w in edited.warnings)
+    assert [edited.layouts[i] for i in range(len(flat.layouts)) if i != k] == \
+        [flat.layouts[i] for i in range(len(flat.layouts)) if i != k]
+    with pytest.raises(ValueError, match="rooms 0-3; room 4 was given"):
+        with_room(flat, 4, flat.plans[k], taken)
+    with pytest.raises(ValueError, match="does not hold the objects of room"):
+        with_room(flat, (k + 1) % 4, flat.plans[k], taken)
 
 
 class Cramped:

@@ -70,3 +70,15 @@ def assemble_apartment(plan: HousePlan, plans: list[ConstraintPlan], layouts: li
                      scenes=scenes, robot_start=start,
                      vr_anchor=vr, anchor_room=anchor_room, key_nav=navigation.key_nav, e_nav=navigation.e_nav,
                      path=navigation.path, unplaced=unplaced, warnings=warnings + plan.warnings)
+
+
+def with_room(apartment: Apartment, k: int, plan: ConstraintPlan, layout: Layout, seed: int = 0) -> Apartment:
+    """The apartment with room `k` (floorplan order) placed again from an edited plan and layout, the others as
+    they were: assembled anew, so the robot's path, Key_NAV and the warnings follow the edit across the doors."""
+    if not 0 <= k < len(apartment.plans):
+        raise ValueError(f"the apartment has rooms 0-{len(apartment.plans) - 1}; room {k} was given")
+    if {o.id for o in plan.objects} != {o.id for o in apartment.plans[k].objects}:
+        raise ValueError(f"the edited plan {plan.id} does not hold the objects of room {k + 1} of {apartment.id}")
+    plans = [plan if i == k else p for i, p in enumerate(apartment.plans)]
+    layouts = [layout if i == k else lay for i, lay in enumerate(apartment.layouts)]
+    return assemble_apartment(apartment.plan, plans, layouts, apartment.task_graph, seed)
