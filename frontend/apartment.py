@@ -164,20 +164,9 @@ class ApartmentMode:
                 for oid in a.path.unreachable]
         return out
 
-    def save(self) -> None:
-        """Accept & save: a new stored scene, or the next version of the stored apartment on screen, with the
-        designer's edits; a house that fails a check asks first, as a single room does."""
-        s = self.session
-        findings = self.findings()
-        if findings:
-            listed = "\n".join(f"- ⚠ {f.text}" for f in findings)
-            s.confirm(f"Save an apartment that fails {len(findings)} check(s)?",
-                      f"{listed}\n\nSaving anyway records that the checks were overridden.",
-                      "Save anyway", lambda: self._save(findings))
-            return
-        self._save([])
-
-    def _save(self, overridden: list[Finding]) -> None:
+    def save(self, overridden: list[Finding]) -> None:
+        """Store the apartment as a new scene, or as the next version of the stored apartment on screen, with the
+        designer's edits and the checks saved over (the Scenes tab asks first)."""
         s, a = self.session, self.current
         name = s.scenes.save_name.value.strip() or a.task_graph.instruction[:60]
         sid, number = s.scenes.store_version(name, a, s.scenes.edits_with(overridden))

@@ -2,7 +2,7 @@
 versions, reopening one, and downloads (house JSON, GLB) named after the version.
 
 Saving runs the checks first: a scene that fails some is saved only once the designer confirms, and the override
-is stored as an edit. An apartment on screen is saved by its own mode (frontend.apartment)."""
+is stored as an edit. An apartment on screen is checked room by room and saved by its own mode (frontend.apartment)."""
 
 from __future__ import annotations
 
@@ -36,21 +36,22 @@ class ScenesPanel:
                          "stored yet), named `<scene>-v<n>-house.json` and `<scene>-v<n>.glb`.")
 
     def accept(self) -> None:
+        """Save the scene (or the apartment, every room checked) on screen; one that fails a check asks first."""
         s = self.session
         if s.apartment.current is not None:
-            s.apartment.save()
-            return
-        if s.state.gen is None:
+            findings, save, what = s.apartment.findings(), s.apartment.save, "an apartment"
+        elif s.state.gen is not None:
+            findings, save, what = s.refresh_checks(), self._save, "a scene"
+        else:
             s.say("**Error:** Nothing to save yet: generate a scene first.")
             return
-        findings = s.refresh_checks()
         if findings:
             listed = "\n".join(f"- ⚠ {f.text}" for f in findings)
-            s.confirm(f"Save a scene that fails {len(findings)} check(s)?",
+            s.confirm(f"Save {what} that fails {len(findings)} check(s)?",
                       f"{listed}\n\nSaving anyway records that the checks were overridden.",
-                      "Save anyway", lambda: self._save(findings))
+                      "Save anyway", lambda: save(findings))
             return
-        self._save([])
+        save([])
 
     def _save(self, overridden: list[Finding]) -> None:
         s = self.session

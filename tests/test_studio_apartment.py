@@ -21,15 +21,22 @@ from frontend.replay import room_at  # noqa: E402
 from frontend.view import world  # noqa: E402
 
 
-def test_apartment_in_the_studio(browser, studio):  # noqa: F811
+def _three_rooms(browser, studio):
+    """A new tab and its session, showing a kitchen, a living room and a bedroom (seed 4: an apartment whose kitchen
+    the robot reaches, so the path is drawn)."""
     before = set(studio.sessions)
     page = open_studio(browser, studio)
     session = session_of(studio, before)
     choose(page, "Room type", "apartment", session.room)
     enter(page, "Rooms (apartment)", "kitchen, living room, bedroom", session.rooms)
-    enter(page, "Seed", 4, session.seed)  # an apartment whose kitchen the robot reaches (the path is drawn)
+    enter(page, "Seed", 4, session.seed)
     page.get_by_role("button", name="Generate").click()
     page.get_by_text("Apartment ready").wait_for(timeout=WAIT)
+    return page, session
+
+
+def test_apartment_in_the_studio(browser, studio):  # noqa: F811
+    page, session = _three_rooms(browser, studio)
     apartment = session.apartment.current
     assert apartment.key_nav == 1.0
     wait_until(page, lambda: len(session.energy_plot.data[0]) == len(session.state.steps),
@@ -102,14 +109,7 @@ def test_apartment_in_the_studio(browser, studio):  # noqa: F811
 
 
 def test_editing_a_room_of_an_apartment(browser, studio):  # noqa: F811
-    before = set(studio.sessions)
-    page = open_studio(browser, studio)
-    session = session_of(studio, before)
-    choose(page, "Room type", "apartment", session.room)
-    enter(page, "Rooms (apartment)", "kitchen, living room, bedroom", session.rooms)
-    enter(page, "Seed", 4, session.seed)
-    page.get_by_role("button", name="Generate").click()
-    page.get_by_text("Apartment ready").wait_for(timeout=WAIT)
+    page, session = _three_rooms(browser, studio)
     dismiss_notices(page)
     first = session.apartment.current
     assert session.state.values.room == 0 and session.state.gen.plan == first.plans[0]  # the counter's kitchen
