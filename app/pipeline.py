@@ -82,24 +82,27 @@ class Pipeline:
     def generate_apartment(self, instruction: str, rooms: list[str] | None = None, seed: int = 0,
                            solver: str | None = None, observer: StepObserver | None = None) -> Apartment:
         """Several rooms joined by doors; the task's own room type is inferred from the instruction."""
-        graph = self.parse(instruction, None)
+        return self.generate_apartment_from_graph(self.parse(instruction, None), rooms, seed, solver, observer)
+
+    def generate_apartment_from_graph(self, graph: TaskGraph, rooms: list[str] | None = None, seed: int = 0,
+                                      solver: str | None = None, observer: StepObserver | None = None) -> Apartment:
         house = ApartmentPlanner(self.planner).plan(graph, rooms, seed=seed, plan_id=f"apartment-{seed}")
         plans = [self.writer.write(rp) for rp in house.room_plans]
         layouts = [self.place_passable(plan, seed, solver, observer) for plan in plans]
         return assemble_apartment(house, plans, layouts, graph, seed)
 
     def place_passable(self, plan: ConstraintPlan, seed: int = 0, solver: str | None = None,
-                       observer: StepObserver | None = None) -> Layout:
+                       observer: StepObserver | None = None, keep: Fixed | None = None) -> Layout:
         """`place` for a room with several doors: the robot may have to cross it from one door to another (a room of
         an apartment), or enters by one of them and must reach every task object from there (a single room), which
         no placer is asked for (Key_NAV asks for the task objects, from any door). While its furniture cuts a door
         off, the room is placed again with the next seed, up to PASSABLE_TRIES in all; if none keeps its doors
         joined, the first layout, with a warning. The layout records the seed it kept; the `observer` sees its
-        steps; its timing counts every try."""
+        steps; its timing counts every try. `keep`: poses every try keeps (a designer's re-plan)."""
         tries = []
         for k in range(PASSABLE_TRIES if len(plan.room.doors) > 1 else 1):
             steps: list = []
-            layout = self.place(plan, seed + k, solver, steps.append if observer else None)
+            layout = self.place(plan, seed + k, solver, steps.append if observer else None, keep)
             tries.append((layout, steps))
             if doors_joined(plan.room, footprint_boxes(layout.placements)):
                 break
@@ -118,9 +121,10 @@ class Pipeline:
     def replan(self, gen: Generation, constraints: str, seed: int = 0, solver: str | None = None,
                observer: StepObserver | None = None) -> Generation:
         """The same room and objects with edited constraint text, placed again from the edited point:
-        objects placed before the first one whose constraints changed keep their poses."""
+        objects placed before the first one whose constraints changed keep their poses (and, as when it was
+        generated, a room with several doors is placed again while its furniture cuts one off: `place_passable`)."""
         plan = gen.plan.model_copy(update={"constraints": constraints})
-        layout = self.place(plan, seed, solver, observer, keep=kept_before_edit(gen, plan))
+        layout = self.place_passable(plan, seed, solver, observer, keep=kept_before_edit(gen, plan))
         return Generation(gen.task_graph, gen.room_plan, plan, layout,
                           assemble_scene(gen.room_plan, layout, gen.task_graph, seed, constraints))
 
@@ -128,8 +132,8 @@ class Pipeline:
                        observer: StepObserver | None = None) -> Generation:
         """Re-plan from a designer's moves: the `moved` objects stay where the designer put them and the
         placer places the others again around them, from the first moved object's point in its order on
-        (see `kept_around_moves`)."""
-        layout = self.place(gen.plan, seed, solver, observer, keep=kept_around_moves(gen, moved))
+        (see `kept_around_moves`; `place_passable` as in `replan`)."""
+        layout = self.place_passable(gen.plan, seed, solver, observer, keep=kept_around_moves(gen, moved))
         return Generation(gen.task_graph, gen.room_plan, gen.plan, layout,
                           assemble_scene(gen.room_plan, layout, gen.task_graph, seed, gen.plan.constraints))
 

@@ -6,8 +6,8 @@ the doors. The placement steps come from the rooms in floorplan order, so the st
 by room. A designer edits one room at a time with the single-room tools (constraints, drags, typed poses,
 turns, re-placing the rest, undo): a click on an object makes its room the one edited, whose Generation
 (room frame) is the session's `gen`; each edit is folded back into the apartment (models.scene.apartment.
-with_room), so the robot's path and Key_NAV through the doors follow it. Task-graph corrections stay
-single-room (the rooms and what goes in each come from the graph: regenerate the apartment instead).
+with_room), so the robot's path and Key_NAV through the doors follow it. Task-graph corrections regenerate
+the whole apartment (the same room types, seed and solver), since the graph decides what goes in which room.
 """
 
 from __future__ import annotations
@@ -29,7 +29,7 @@ from models.placement import PlacementStep
 from models.planning.apartment_planner import ApartmentError, parse_rooms
 from models.planning.floorplan import FloorplanError
 from models.scene.apartment import house_objects, with_room
-from models.values import Room, Scene
+from models.values import Room, Scene, TaskGraph
 from models.values.apartment import Apartment
 
 PATH_COLOUR = (200, 40, 160)
@@ -90,27 +90,48 @@ class ApartmentMode:
               f"{len(apartment.unplaced)} unplaced ({1000 * (time.perf_counter() - started):.0f} ms)."
               + (f"\n\n{parser_note(apartment.task_graph)}" if apartment.task_graph.uncertain else ""))
 
-    def show(self, apartment: Apartment, steps: list[PlacementStep], scene_id: int | None) -> None:
-        """Put an apartment on screen (its steps in the Placement tab); `scene_id`: the stored scene it is."""
+    def show(self, apartment: Apartment, steps: list[PlacementStep], scene_id: int | None,
+             record: str | None = None) -> None:
+        """Put an apartment on screen (its steps in the Placement tab); `scene_id`: the stored scene it is;
+        `record`: an undoable edit's label (the designer's edits go on), else a new start."""
         s = self.session
         k = first_room(apartment)
         with s.lock:
-            s.history.clear()
+            if record is None:
+                s.history.clear()
+                s.state.seed, s.state.solver = int(s.seed.value), s.solver.value
+            else:
+                s.history.record(record, s.state.values)
             s.state.values = Values(room_generation(apartment, k), tuple(self._in_house(apartment, steps)),
-                                    apartment=apartment, room=k)
+                                    s.state.edits if record else (), apartment=apartment, room=k)
             s.state.shown, s.state.playing, s.state.scene_id = len(steps), False, scene_id
-            s.state.seed, s.state.solver = int(s.seed.value), s.solver.value
             s.state.runs += 1
             s.selected = None
         s.picked.visible = False
         s.redraw()
         s.set_view("fit" if s.state.view != "top" else "top")
-        s.graph_md.content = self.summary()
-        s.draw_graph(apartment.task_graph)
-        s.constraints.update()
+        s.refresh_panels()
         s.refresh_checks()
         threading.Thread(target=s.energy_curve, args=(self.rooms(), s.state.steps, self.room_of,
                                                       lambda: self.current is apartment), daemon=True).start()
+
+    def regenerate(self, graph: TaskGraph) -> None:
+        """Regenerate from the Task tab's corrected graph: the same room types in the same order, the same seed and
+        solver; undoable."""
+        s = self.session
+        steps: list[PlacementStep] = []
+        rooms = [hr.room.type for hr in self.current.floorplan.rooms]
+        try:
+            apartment = s.pipeline.generate_apartment_from_graph(graph, rooms, s.state.seed, s.state.solver,
+                                                                 s.observer(steps))
+        except (ApartmentError, FloorplanError) as e:
+            s.say(f"**Error:** {e}\n\nThe apartment on screen is unchanged.")
+            return
+        self.show(apartment, steps, s.state.scene_id, record="regenerate from graph")
+        s.set_unsaved(True)
+        s.say(f"Apartment regenerated from the corrected graph (#{s.state.runs}): "
+              + ", ".join(f"{o.type} → {apartment.floorplan.room(r).room.type}"
+                          for o in graph.objects if (r := apartment.plan.assignment.get(o.type))) + ".")
 
     def rooms(self) -> list[tuple]:
         """Every room's (plan, placements), for the energy plot."""
@@ -132,8 +153,9 @@ class ApartmentMode:
         k = int(self.room_of(object_id)[1:]) - 1
         if k == s.state.values.room:
             return
+        gen = replace(room_generation(self.current, k), task_graph=s.state.gen.task_graph)  # corrections kept
         with s.lock:
-            s.state.values = replace(s.state.values, gen=room_generation(self.current, k), room=k, reference=None)
+            s.state.values = replace(s.state.values, gen=gen, room=k, reference=None)
         s.constraints.update()
         s.refresh_checks()
 
@@ -145,13 +167,14 @@ class ApartmentMode:
         k = s.state.values.room
         apartment = with_room(self.current, k, gen.plan, gen.layout, s.state.seed)
         old = s.state.steps
+        room_now = replace(room_generation(apartment, k), task_graph=gen.task_graph)  # the graph's corrections kept
         if steps is None:
-            return room_generation(apartment, k), old, apartment
+            return room_now, old, apartment
         room = f"r{k + 1}"
         first = next((i for i, step in enumerate(old) if self.room_of(step.object_id) == room), len(old))
         others = [step for step in old if self.room_of(step.object_id) != room]
         spliced = (*others[:first], *self._in_house(apartment, steps), *others[first:])
-        return room_generation(apartment, k), spliced, apartment
+        return room_now, spliced, apartment
 
     def findings(self) -> list[Finding]:
         """Every room's checks (each in its own frame, no metric reference) and the task objects the robot cannot

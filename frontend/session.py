@@ -667,19 +667,8 @@ class StudioSession:
 
     # ---- task graph corrections -------------------------------------------------------------------
 
-    def _single_room(self) -> bool:
-        """Task-graph corrections rebuild a single room; an apartment's rooms and their objects come from the graph."""
-        if self.apartment.current is None:
-            return True
-        self.say("**Error:** Task-graph corrections work on a single room. For an apartment, change the instruction "
-                 "or the Rooms field and press **Generate**; edit a room's objects in the Constraints tab or by "
-                 "moving them.")
-        return False
-
     def _graph_edit(self, objects: list[TaskObject], note: str) -> None:
         gen = self.state.gen
-        if not self._single_room():
-            return
         graph = gen.task_graph.model_copy(update={"objects": objects})
         edit = Edit("task-graph", note, [o.model_dump() for o in gen.task_graph.objects],
                     [o.model_dump() for o in objects])
@@ -688,7 +677,8 @@ class StudioSession:
                                                                        gen.scene), edits=self.state.edits + (edit,))
         self.refresh_panels()
         self.set_unsaved(True)
-        self.say(f"Task graph edited ({note}). Press **Regenerate from graph** to rebuild the room.")
+        self.say(f"Task graph edited ({note}). Press **Regenerate from graph** to rebuild the "
+                 f"{'apartment' if self.apartment.current else 'room'}.")
 
     def set_role(self) -> None:
         gen = self.state.gen
@@ -719,7 +709,7 @@ class StudioSession:
 
     def regenerate(self) -> None:
         gen = self.state.gen
-        if gen is None or not self._single_room():
+        if gen is None:
             return
         with self.busy("Regenerating from the corrected graph") as free:
             if not free:
@@ -727,5 +717,8 @@ class StudioSession:
             graph: TaskGraph = gen.task_graph
             keep = {o.type for o in graph.objects}
             graph = graph.model_copy(update={"relations": [r for r in graph.relations if r[0] in keep and r[2] in keep]})
+            if self.apartment.current is not None:
+                self.apartment.regenerate(graph)
+                return
             self.run(lambda obs: self.pipeline.generate_from_graph(graph, self.state.seed, self.state.solver, obs),
                       fresh=False, record="regenerate from graph")

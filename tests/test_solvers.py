@@ -129,6 +129,31 @@ def test_a_drag_onto_another_object_replans_the_rest_around_it(pipeline, solver)
     assert scene_metrics(again.plan, again.layout).collisions == 0 and not again.layout.unplaced
 
 
+def test_a_re_plan_of_a_room_with_two_doors_tries_again_while_a_door_is_cut_off(pipeline, monkeypatch):
+    """As when the room was generated (`place_passable`): each try keeps the designer's poses, the next seed follows
+    while the furniture cuts a door off, and after the last try the first layout comes with a warning."""
+    from dataclasses import replace
+
+    from models.values import Opening
+    gen = pipeline.generate("Put a chilled bread on the counter", "kitchen", seed=0)
+    room = gen.plan.room.model_copy(update={"doors": [*gen.plan.room.doors, Opening(wall="north", center=1.0,
+                                                                                    width=0.9)]})
+    gen = replace(gen, plan=gen.plan.model_copy(update={"room": room}))
+    moved = pipeline.move(gen, gen.layout.placements[0].id, 1.0, 1.0, 0.0)
+    tries = []
+    real = pipeline.place
+    monkeypatch.setattr(pipeline, "place", lambda plan, seed, solver=None, observer=None, keep=None: (
+        tries.append((seed, keep)), real(plan, seed, solver, observer, keep))[1])
+    monkeypatch.setattr("app.pipeline.doors_joined", lambda room, boxes: len(tries) == 2)
+    again = pipeline.replace_around(moved, [moved.layout.placements[0].id], seed=5)
+    assert [seed for seed, _ in tries] == [5, 6] and tries[0][1] == tries[1][1] and again.layout.seed == 6
+    tries.clear()
+    monkeypatch.setattr("app.pipeline.doors_joined", lambda room, boxes: False)
+    cut = pipeline.replan(moved, moved.plan.constraints + "\n", seed=5)
+    assert [seed for seed, _ in tries] == [5, 6, 7, 8] and cut.layout.seed == 5
+    assert "cuts one of the room's doors off" in cut.layout.warnings[-1]
+
+
 def test_replacing_around_nothing_or_a_stranger_is_refused(pipeline):
     from app.pipeline import kept_around_moves
     gen = pipeline.generate("Put a chilled bread on the counter", "kitchen", seed=0, solver="greedy")

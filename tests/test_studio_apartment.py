@@ -2,7 +2,7 @@
 animation room by room, accept & save as versions, downloads by version; a single room afterwards leaves
 the apartment mode, and reopening the stored apartment shows the whole house again. A room of the apartment
 is edited like a single room (a click picks the room; constraint text, typed pose, re-place the rest, undo),
-each edit folded back into the house."""
+each edit folded back into the house; a task-graph correction regenerates the whole apartment."""
 
 import json
 import re
@@ -170,10 +170,19 @@ def test_editing_a_room_of_an_apartment(browser, studio):  # noqa: F811
     page.get_by_text("Undid: re-place the rest.").wait_for(timeout=WAIT)
     assert session.apartment.current is moved and session.state.gen.layout == moved.layouts[1]
 
-    page.get_by_role("tab", name="Task").click()  # task-graph corrections rebuild a single room: refused
+    page.get_by_role("tab", name="Task").click()  # a task-graph correction regenerates the whole apartment
     page.get_by_text("Correct the task graph").click()
+    choose(page, "Object", "Fridge", session.role_object)
+    page.get_by_role("button", name="Remove object").click()
+    page.get_by_text(re.compile(r"Task graph edited \(-Fridge\).*rebuild the apartment")).wait_for(timeout=WAIT)
     page.get_by_role("button", name="Regenerate from graph").click()
-    page.get_by_text(re.compile("Task-graph corrections work on a single room")).wait_for(timeout=WAIT)
+    page.get_by_text(re.compile("Apartment regenerated from the corrected graph")).wait_for(timeout=WAIT)
+    again = session.apartment.current
+    assert [hr.room.type for hr in again.floorplan.rooms] == ["kitchen", "living room", "bedroom"]
+    assert "Fridge" not in {o.type for o in again.task_graph.objects} | {o.type for p in again.plans for o in p.objects
+                                                                      if o.is_task}
+    page.get_by_role("button", name="Undo").click()
+    page.get_by_text("Undid: regenerate from graph.").wait_for(timeout=WAIT)
     assert session.apartment.current is moved
 
     page.get_by_role("tab", name="Scenes").click()
@@ -186,4 +195,5 @@ def test_editing_a_room_of_an_apartment(browser, studio):  # noqa: F811
     scene_id = int(re.search(r"scene (\d+)", saved.inner_text()).group(1))
     assert studio.store.scene(scene_id, 1) == moved
     kinds = [e["kind"] for e in studio.store.edits(scene_id)]
-    assert kinds[:4] == ["constraints", "move", "re-place", "undo"] and set(kinds[4:]) <= {"override"}
+    assert kinds[:6] == ["constraints", "move", "re-place", "undo", "task-graph", "undo"]
+    assert set(kinds[6:]) <= {"override"}
