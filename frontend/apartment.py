@@ -148,10 +148,11 @@ class ApartmentMode:
         return hr.x, hr.z
 
     def focus_on(self, object_id: str) -> None:
-        """Make the room of `object_id` the one edited (a click on one of its objects)."""
+        """Make the room of `object_id` the one edited (a click on one of its objects); not while an edit of the
+        room edited now is being placed, which goes back into that room."""
         s = self.session
         k = int(self.room_of(object_id)[1:]) - 1
-        if k == s.state.values.room:
+        if k == s.state.values.room or s.state.busy:
             return
         gen = replace(room_generation(self.current, k), task_graph=s.state.gen.task_graph)  # corrections kept
         with s.lock:

@@ -116,6 +116,12 @@ def test_editing_a_room_of_an_apartment(browser, studio):  # noqa: F811
     page.get_by_role("tab", name="Constraints").click()
     page.get_by_text("Editing room 1 (kitchen) of the apartment").wait_for(timeout=WAIT)
 
+    bed = next(o for o in session.displayed().objects if o.type == "Bed")
+    session.state.busy = True  # while a re-plan of the kitchen runs, a click elsewhere does not change the room
+    session.pick(bed.id)
+    assert session.state.values.room == 0 and session.controls is None
+    session.state.busy = False
+
     # a real click on the living room's sofa makes the living room the room edited
     page.get_by_role("button", name="Top view").click()
     wait_until(page, lambda: session.state.view == "top", "the top view")
