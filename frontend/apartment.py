@@ -112,8 +112,7 @@ class ApartmentMode:
         s.set_view("fit" if s.state.view != "top" else "top")
         s.refresh_panels()
         s.refresh_checks()
-        threading.Thread(target=s.energy_curve, args=(self.rooms(), s.state.steps, self.room_of,
-                                                      lambda: self.current is apartment), daemon=True).start()
+        threading.Thread(target=self.energy_curve, args=(lambda: self.current is apartment,), daemon=True).start()
 
     def regenerate(self, graph: TaskGraph) -> None:
         """Regenerate from the Task tab's corrected graph: the same room types in the same order, the same seed and
@@ -133,9 +132,12 @@ class ApartmentMode:
               + ", ".join(f"{o.type} → {apartment.floorplan.room(r).room.type}"
                           for o in graph.objects if (r := apartment.plan.assignment.get(o.type))) + ".")
 
-    def rooms(self) -> list[tuple]:
-        """Every room's (plan, placements), for the energy plot."""
-        return [(plan, layout.placements) for plan, layout in zip(self.current.plans, self.current.layouts)]
+    def energy_curve(self, current) -> None:
+        """The energy plot of the apartment on screen (its rooms summed; each step in its room's frame, as the energy
+        is); drawn if `current()` still holds when it is ready."""
+        a = self.current
+        rooms = [(plan, layout.placements) for plan, layout in zip(a.plans, a.layouts)]
+        self.session.energy_curve(rooms, self._in_house(a, self.session.state.steps, -1), self.room_of, current)
 
     def label(self, k: int | None = None) -> str:
         """A room's name on screen, e.g. `room 2 (kitchen)`; the room edited by default."""
@@ -218,9 +220,10 @@ class ApartmentMode:
         """The room an apartment's object is placed in: its id's prefix (`r2-chair-0` -> `r2`)."""
         return object_id.split("-", 1)[0]
 
-    def _in_house(self, apartment: Apartment, steps: Sequence[PlacementStep]) -> list[PlacementStep]:
-        """Each step's candidates moved from its room's frame to the house frame (for the heat-map)."""
-        offsets = {hr.id.split("|")[1]: (hr.x, hr.z) for hr in apartment.floorplan.rooms}
+    def _in_house(self, apartment: Apartment, steps: Sequence[PlacementStep], sign: int = 1) -> list[PlacementStep]:
+        """Each step's pose and candidates moved from its room's frame to the house frame (for the animation and the
+        heat-map); `sign` -1: back to the room's frame."""
+        offsets = {hr.id.split("|")[1]: (sign * hr.x, sign * hr.z) for hr in apartment.floorplan.rooms}
         out = []
         for step in steps:
             x, z = offsets[self.room_of(step.object_id)[1:]]

@@ -292,8 +292,7 @@ class StudioSession:
             if self.state.gen is gen and not self.view.labels:
                 self.view.draw_labels(self.displayed(), self._visible())
         if self.apartment.current is not None:
-            self.energy_curve(self.apartment.rooms(), self.state.steps, self.apartment.room_of,
-                              lambda: self.state.gen is gen)
+            self.apartment.energy_curve(lambda: self.state.gen is gen)
         else:
             self.energy_curve([(gen.plan, gen.layout.placements)], steps, one_room, lambda: self.state.gen is gen)
 

@@ -17,7 +17,7 @@ pytest.importorskip("playwright")
 
 from app.pipeline import room_generation  # noqa: E402
 from frontend.apartment import ApartmentMode, first_room  # noqa: E402
-from frontend.replay import room_at  # noqa: E402
+from frontend.replay import energy_after_steps, room_at  # noqa: E402
 from frontend.view import world  # noqa: E402
 
 
@@ -35,12 +35,24 @@ def _three_rooms(browser, studio):
     return page, session
 
 
+def _placed(studio, session) -> list:
+    """The placer's own steps for `_three_rooms`' apartment (each in its room's frame, as the energy is measured)."""
+    steps = []
+    studio.pipeline.generate_apartment(session.instruction.value, ["kitchen", "living room", "bedroom"], 4,
+                                       session.state.solver, steps.append)
+    return steps
+
+
 def test_apartment_in_the_studio(browser, studio):  # noqa: F811
     page, session = _three_rooms(browser, studio)
     apartment = session.apartment.current
     assert apartment.key_nav == 1.0
     wait_until(page, lambda: len(session.energy_plot.data[0]) == len(session.state.steps),
                "the energy plot of the apartment's steps")  # not the room generated before
+    placed = _placed(studio, session)
+    rooms = [(plan, layout.placements) for plan, layout in zip(apartment.plans, apartment.layouts)]
+    total = [round(r["total"], 4) for r in energy_after_steps(rooms, placed, ApartmentMode.room_of)]
+    assert list(session.energy_plot.data[-1]) == total
     assert [hr.room.type for hr in apartment.floorplan.rooms] == ["kitchen", "living room", "bedroom"]
     nodes = {h._impl.name for h in session.view.nodes}
     assert {"/rooms/1. kitchen", "/rooms/2. living room", "/rooms/3. bedroom", "/markers/path"} <= nodes
@@ -143,13 +155,20 @@ def test_editing_a_room_of_an_apartment(browser, studio):  # noqa: F811
     page.get_by_role("button", name="Apply text").click()
     page.get_by_text(re.compile("Re-placed after the edit")).wait_for(timeout=WAIT)
     edited_apartment = session.apartment.current
-    expected = studio.pipeline.replan(room_generation(first, 1), edited, 4, session.state.solver)
+    replanned = []
+    expected = studio.pipeline.replan(room_generation(first, 1), edited, 4, session.state.solver, replanned.append)
     assert edited_apartment.layouts[1].placements == expected.layout.placements
     assert edited_apartment.plans[1].constraints == edited
     assert [edited_apartment.layouts[k] for k in (0, 2)] == [first.layouts[k] for k in (0, 2)]
     steps = session.state.steps  # the house's steps: the living room's new ones where its old ones were
     rooms = [ApartmentMode.room_of(s.object_id) for s in steps]
     assert rooms == sorted(rooms) and sum(r == "r2" for r in rooms) >= len(expected.layout.placements)
+    placed = _placed(studio, session)  # the energy plot: the other rooms' steps and the re-plan's
+    house_steps = [s for s in placed if s.object_id.startswith("r1-")] + replanned + \
+        [s for s in placed if s.object_id.startswith("r3-")]
+    rooms = [(plan, layout.placements) for plan, layout in zip(edited_apartment.plans, edited_apartment.layouts)]
+    total = [round(r["total"], 4) for r in energy_after_steps(rooms, house_steps, ApartmentMode.room_of)]
+    wait_until(page, lambda: list(session.energy_plot.data[-1]) == total, "the energy plot after the edit")
     offset = first.floorplan.rooms[1]
     for p in edited_apartment.layouts[1].placements:  # drawn in the house frame
         assert np.allclose(session.view.objects[p.id].position[::2],
