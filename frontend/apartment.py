@@ -137,7 +137,7 @@ class ApartmentMode:
         is); drawn if `current()` still holds when it is ready."""
         a = self.current
         rooms = [(plan, layout.placements) for plan, layout in zip(a.plans, a.layouts)]
-        self.session.energy_curve(rooms, self._in_house(a, self.session.state.steps, -1), self.room_of, current)
+        self.session.placement.energy_curve(rooms, self._in_house(a, self.session.state.steps, -1), self.room_of, current)
 
     def label(self, k: int | None = None) -> str:
         """A room's name on screen, e.g. `room 2 (kitchen)`; the room edited by default."""
@@ -263,4 +263,4 @@ class ApartmentMode:
             s.view.draw_path(a.path.points, PATH_COLOUR)
             shown, steps = s.state.shown, s.state.steps
             step = steps[shown - 1] if 0 < shown <= len(steps) else None
-            s.view.heat_map(step if s.heat.value and shown < len(steps) else None)
+            s.view.heat_map(step if s.placement.heat.value and shown < len(steps) else None)

@@ -2,10 +2,10 @@
 
 Above the tabs: the status and progress lines, the view buttons (fit, top, VR user's view), undo / redo,
 the live checks and the picked object's panel (pose fields, 90 degree turns), so they show on every tab.
-Tabs: Task (instruction, room type, seed, solver, Generate; the task graph with role corrections) and
-Placement (play / pause / step / speed, heat-map, energy plot) are here; Constraints
-(frontend.constraints_panel), Scenes (frontend.scenes_panel) and Headset (frontend.headset_panel) are panels
-of their own that act through the session's shared steps (`run`, `busy`, `confirm`, `say`).
+Tabs: Task (instruction, room type, seed, solver, Generate; the task graph with role corrections) is here;
+Placement (frontend.placement_panel), Constraints (frontend.constraints_panel), Scenes (frontend.scenes_panel) and
+Headset (frontend.headset_panel) are panels of their own that act through the session's shared steps (`run`,
+`busy`, `confirm`, `say`).
 """
 
 from __future__ import annotations
@@ -14,7 +14,6 @@ import contextlib
 import logging
 import threading
 import time
-from collections.abc import Callable
 from dataclasses import replace
 
 import numpy as np
@@ -24,12 +23,13 @@ from viser import _messages
 from app.pipeline import Generation, Pipeline, pose_of
 from frontend import camera
 from frontend.apartment import ApartmentMode
-from frontend.captions import graph_summary, metrics_table, parser_note, placing_progress, step_caption, unplaced_note
+from frontend.captions import graph_summary, metrics_table, parser_note, placing_progress, unplaced_note
 from frontend.checks import Finding, run_checks, summary
 from frontend.constraints_panel import ConstraintsPanel
 from frontend.graph_image import render as render_graph
 from frontend.history import History
-from frontend.replay import RoomOf, energy_after_steps, one_room, room_at
+from frontend.placement_panel import PlacementPanel
+from frontend.replay import RoomOf, one_room, room_at
 from frontend.scenes_panel import ScenesPanel
 from frontend.state import State, Values
 from frontend.view import SceneView, world
@@ -37,16 +37,13 @@ from models.energy.exact import layout_energy
 from models.language import InstructionError
 from models.metrics.realism import checks as habit_checks
 from models.placement import ALL_OBJECTS, DEFAULT_SOLVER, SOLVERS, PlacementStep
-from models.values import ConstraintPlan, Scene, TaskGraph, TaskObject
+from models.values import Scene, TaskGraph, TaskObject
 from models.values.apartment import APARTMENT
 from models.world import ROOM_TYPES, catalogue
 from studio_db import Store
 from studio_db.store import Edit
 
 ROLE_CHOICES = ("key", "anchor", "inference", "key + anchor", "anchor + inference")
-ENERGY_TERMS = ("rel", "collision", "oob", "nav", "aff", "missing", "total")  # the plot's series
-ENERGY_DECIMALS = 4  # the plot's resolution
-ENERGY_PLOT_TOP = 1.0  # the plot's y axis shows at least 0..1 (a layout of energy 0 draws flat, not magnified)
 DEFAULT_INSTRUCTION = "Put a chilled bread on the counter"
 LIVE_RESCORE_S = 0.3
 PROGRESS_S = 0.2  # the progress line is updated at most this often while placing
@@ -134,17 +131,7 @@ class StudioSession:
                 self.regenerate_button.on_click(lambda _: self.regenerate())
 
         with tabs.add_tab("Placement"):
-            buttons = gui.add_button_group("Animation", ("Play", "Pause", "Step", "Show all"))
-            buttons.on_click(lambda e: self.animate(e.target.value))
-            self.speed = gui.add_slider("Objects / s", 0.5, 10.0, 0.5, 3.0)
-            self.step_md = gui.add_markdown("")
-            self.heat = gui.add_checkbox("Candidate heat-map", True)
-            self.energy_plot = gui.add_uplot(
-                data=(np.zeros(1), *[np.zeros(1) for _ in ENERGY_TERMS]),
-                series=({"label": "step"}, *[{"label": t, "stroke": c} for t, c in
-                                              zip(ENERGY_TERMS, ("#e07b39", "#c0392b", "#8e44ad", "#2980b9",
-                                                                 "#27ae60", "#7f8c8d", "#111111"))]),
-                title="Energy terms per step", aspect=1.6, scales={"x": {"time": False}})
+            self.placement = PlacementPanel(self, gui)
 
         with tabs.add_tab("Constraints"):
             self.constraints = ConstraintsPanel(self, gui)
@@ -294,7 +281,8 @@ class StudioSession:
         if self.apartment.current is not None:
             self.apartment.energy_curve(lambda: self.state.gen is gen)
         else:
-            self.energy_curve([(gen.plan, gen.layout.placements)], steps, one_room, lambda: self.state.gen is gen)
+            self.placement.energy_curve([(gen.plan, gen.layout.placements)], steps, one_room,
+                                        lambda: self.state.gen is gen)
 
     def redraw(self, labels: bool = True) -> None:
         if self.apartment.current is not None:
@@ -308,10 +296,10 @@ class StudioSession:
             self.view.draw_room(gen.scene)
             self.view.draw_objects(*self._shown(), labels)
             step = self.state.steps[self.state.shown - 1] if 0 < self.state.shown <= len(self.state.steps) else None
-            self.view.heat_map(step if self.heat.value and self.state.shown < len(self.state.steps) else None)
+            self.view.heat_map(step if self.placement.heat.value and self.state.shown < len(self.state.steps) else None)
         self._place_controls()
 
-    def _room_of(self) -> RoomOf:
+    def room_of(self) -> RoomOf:
         """Which room an object is placed in: an apartment's rooms are solved one by one."""
         return self.apartment.room_of if self.apartment.current is not None else one_room
 
@@ -320,7 +308,7 @@ class StudioSession:
         scene = self.displayed()
         if scene is None:
             return None, None
-        return room_at(scene, self.state.steps, self.state.shown, self._room_of())
+        return room_at(scene, self.state.steps, self.state.shown, self.room_of())
 
     def _visible(self) -> set[str] | None:
         """The ids on show in the step animation (None: all of them)."""
@@ -372,91 +360,6 @@ class StudioSession:
         size = (cam.image_width, cam.image_height)
         if self.displayed() is not None and self.state.canvas != (0, 0) and size != self.state.canvas:
             self.set_view(self.state.view)
-
-    # ---- the step animation -----------------------------------------------------------------------
-
-    def animate(self, command: str) -> None:
-        if self.displayed() is None:
-            return
-        if command == "Play":
-            if self.state.shown >= len(self.state.steps):
-                self.state.shown = 0
-                self.redraw()
-            self.state.playing = True
-            threading.Thread(target=self._play, daemon=True).start()
-        elif command == "Pause":
-            self.state.playing = False
-        elif command == "Step":
-            self.state.playing = False
-            if self.state.shown >= len(self.state.steps):
-                self.state.shown = 0
-                self.redraw()
-            self._advance()
-        elif command == "Show all":
-            self.state.playing = False
-            self.state.shown = len(self.state.steps)
-            self.redraw()
-            self.step_md.content = "All objects shown."
-
-    def _play(self) -> None:
-        while self.state.playing and not self.closed and self.state.shown < len(self.state.steps):
-            self._advance()
-            time.sleep(max(0.0, 1.0 / float(self.speed.value) - 0.25))
-        self.state.playing = False
-
-    def _next_step(self) -> tuple[PlacementStep, int] | None:
-        """Move the animation on by one step and show its candidates' heat-map: (the step, how many steps are shown
-        now), or None at the end."""
-        with self.lock:
-            if self.state.shown >= len(self.state.steps):
-                return None
-            step = self.state.steps[self.state.shown]
-            self.state.shown += 1
-            shown = self.state.shown
-        if self.heat.value:
-            self.view.heat_map(step)
-        return step, shown
-
-    def _advance(self) -> None:
-        """Show the next step: heat-map of its candidates, then the object settling into the pose the step gave it
-        (at its last step, where it stands now: the designer may have moved it since; frontend.replay)."""
-        if (next_step := self._next_step()) is None:
-            return
-        (step, shown), steps = next_step, self.state.steps
-        scene, room_of, start = self.displayed(), self._room_of(), None
-        (before, was), (after, now) = room_at(scene, steps, shown - 1, room_of), room_at(scene, steps, shown, room_of)
-        if step.restart:  # the room solved again from empty
-            self.view.hide(was - ({o.id for o in scene.all_objects()} if now is None else now))
-        obj = next((o for o in after.objects if o.id == step.object_id), None) if step.x is not None else None
-        if not step.restart and step.object_id in was:
-            start = next(o for o in before.objects if o.id == step.object_id)
-        room = self.apartment.where(step) if self.apartment.current is not None else ""
-        self.step_md.content = step_caption(steps, shown, obj, room, room_of)
-        if obj is None:
-            return
-        frames = max(2, min(8, int(20 / float(self.speed.value))))  # fewer frames when playing fast
-        duration = min(0.25, 0.8 / float(self.speed.value))
-        for k in range(1, frames + 1):
-            if self.closed:
-                return
-            self.view.settle(obj, k / frames, start)
-            time.sleep(duration / frames)
-        if shown == len(steps):
-            self.view.heat_map(None)
-
-    def energy_curve(self, rooms: list[tuple[ConstraintPlan, list]], steps: list[PlacementStep], room_of: RoomOf,
-                     current: Callable[[], bool]) -> None:
-        """The energy terms after each placement step of the room (or the apartment's rooms, summed) as the animation
-        shows it then (frontend.replay.energy_after_steps); drawn when ready if what it is of is `current`."""
-        rows = energy_after_steps(rooms, steps, room_of)
-        if not current() or not rows:
-            return
-        xs = np.arange(1, len(rows) + 1, dtype=float)
-        # rounded: a term's float noise (1e-17 where it is 0) would otherwise set the plot's scale
-        series = [np.round([r[t] for r in rows], ENERGY_DECIMALS) for t in ENERGY_TERMS]
-        top = max(ENERGY_PLOT_TOP, 1.1 * float(np.max(series)))
-        self.energy_plot.scales = {"x": {"time": False}, "y": {"range": (0.0, top)}}
-        self.energy_plot.data = (xs, *series)
 
     # ---- panels -----------------------------------------------------------------------------------
 

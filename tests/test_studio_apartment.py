@@ -47,12 +47,12 @@ def test_apartment_in_the_studio(browser, studio):  # noqa: F811
     page, session = _three_rooms(browser, studio)
     apartment = session.apartment.current
     assert apartment.key_nav == 1.0
-    wait_until(page, lambda: len(session.energy_plot.data[0]) == len(session.state.steps),
+    wait_until(page, lambda: len(session.placement.energy_plot.data[0]) == len(session.state.steps),
                "the energy plot of the apartment's steps")  # not the room generated before
     placed = _placed(studio, session)
     rooms = [(plan, layout.placements) for plan, layout in zip(apartment.plans, apartment.layouts)]
     total = [round(r["total"], 4) for r in energy_after_steps(rooms, placed, ApartmentMode.room_of)]
-    assert list(session.energy_plot.data[-1]) == total
+    assert list(session.placement.energy_plot.data[-1]) == total
     assert [hr.room.type for hr in apartment.floorplan.rooms] == ["kitchen", "living room", "bedroom"]
     nodes = {h._impl.name for h in session.view.nodes}
     assert {"/rooms/1. kitchen", "/rooms/2. living room", "/rooms/3. bedroom", "/markers/path"} <= nodes
@@ -70,12 +70,12 @@ def test_apartment_in_the_studio(browser, studio):  # noqa: F811
     session.pick(fridge.id)  # the gizmo on its top, where it stands in the house
     assert session.picked.visible and fridge.id in session.picked_md.content
     assert np.allclose(session.controls.position[::2], world(fridge.x, 0, fridge.z)[::2], atol=1e-3)
-    session.animate("Step")  # from the start: the first room's first object
-    assert "room 1 / 3 (kitchen)" in session.step_md.content
+    session.placement.animate("Step")  # from the start: the first room's first object
+    assert "room 1 / 3 (kitchen)" in session.placement.step_md.content
     rooms_in_order = []
     while session.state.shown < len(session.state.steps):
-        session._advance()
-        rooms_in_order.append(session.step_md.content.split("room ")[1][0])
+        session.placement.advance()
+        rooms_in_order.append(session.placement.step_md.content.split("room ")[1][0])
         house, visible = room_at(session.displayed(), session.state.steps, session.state.shown, ApartmentMode.room_of)
         on_show = {oid for oid, h in session.view.objects.items() if h.visible}
         assert on_show == (visible if visible is not None else set(session.view.objects))
@@ -168,7 +168,7 @@ def test_editing_a_room_of_an_apartment(browser, studio):  # noqa: F811
         [s for s in placed if s.object_id.startswith("r3-")]
     rooms = [(plan, layout.placements) for plan, layout in zip(edited_apartment.plans, edited_apartment.layouts)]
     total = [round(r["total"], 4) for r in energy_after_steps(rooms, house_steps, ApartmentMode.room_of)]
-    wait_until(page, lambda: list(session.energy_plot.data[-1]) == total, "the energy plot after the edit")
+    wait_until(page, lambda: list(session.placement.energy_plot.data[-1]) == total, "the energy plot after the edit")
     offset = first.floorplan.rooms[1]
     for p in edited_apartment.layouts[1].placements:  # drawn in the house frame
         assert np.allclose(session.view.objects[p.id].position[::2],

@@ -139,16 +139,16 @@ def test_the_step_animation_replays_what_the_placer_did(browser, studio):
             moved_on += final is not None and (final.x, final.z) != (step.x, step.z)
         if shown == len(steps):
             break
-        session._advance()
+        session.placement.advance()
     assert moved_on > 0  # some steps showed an object where the placer put it before it moved on
     settle(page)
     page.screenshot(path=str(SCREENSHOTS / "replay-last-step.png"))
 
     # the energy plot: the objects still to come are pending, not charged as left out; it ends at the layout's energy
     from models.energy.exact import layout_energy
-    from frontend.session import ENERGY_DECIMALS, ENERGY_TERMS
-    wait_until(page, lambda: len(session.energy_plot.data[0]) == len(steps), "the energy plot drawn")
-    curve = dict(zip(ENERGY_TERMS, session.energy_plot.data[1:]))
+    from frontend.placement_panel import ENERGY_DECIMALS, ENERGY_TERMS
+    wait_until(page, lambda: len(session.placement.energy_plot.data[0]) == len(steps), "the energy plot drawn")
+    curve = dict(zip(ENERGY_TERMS, session.placement.energy_plot.data[1:]))
     assert curve["missing"][0] == 0 and curve["total"][0] < layout_energy(session.state.gen.plan, []).total
     final = layout_energy(session.state.gen.plan, session.state.gen.layout.placements).total
     assert abs(curve["total"][-1] - final) <= 10.0 ** -ENERGY_DECIMALS, (curve["total"][-1], final)  # rounded
@@ -166,7 +166,7 @@ def test_closing_the_tab_while_the_animation_plays_stops_it_quietly(browser, stu
         session = session_of(studio, before)
         generate(page, session, "Put a chilled bread on the counter", "kitchen")
         page.get_by_role("tab", name="Placement").click()
-        session.speed.value = 2.0
+        session.placement.speed.value = 2.0
         page.get_by_role("button", name="Play").click()
         page.get_by_text(re.compile(r"Step \d+ / \d+")).wait_for(timeout=WAIT)
         for _ in range(300):  # the studio's own count: a loaded browser may skip a caption it redraws at once

@@ -185,7 +185,7 @@ def main(args) -> int:
             one_scene_rss = rss_mb()
             page.get_by_role("tab", name="Placement").click()
             session = studio.sessions[max(studio.sessions)]
-            session.speed.value = 10.0  # the slider's handle, as a drag would set it
+            session.placement.speed.value = 10.0  # the slider's handle, as a drag would set it
             n_steps = len(session.state.steps)
             t0 = time.perf_counter()
             page.get_by_role("button", name="Play").click()

@@ -81,13 +81,13 @@ def in_browser(page, session, text: str, seed: int, house: bool) -> tuple[float,
     session.constraints.text.value = constraints
     session.constraints.message.content = ""  # the line the wait looks for, from the apartment before
     page.wait_for_timeout(300)
-    plotted = session.energy_plot.data
+    plotted = session.placement.energy_plot.data
     t0 = time.perf_counter()
     page.get_by_role("button", name="Apply text").click()
     wait_for(page, "Re-placed after the edit|Error")
     replan = time.perf_counter() - t0
     for _ in range(300):  # the house's energy plot, drawn after the edit, is not timed with the move
-        if session.energy_plot.data is not plotted:
+        if session.placement.energy_plot.data is not plotted:
             break
         page.wait_for_timeout(100)
     session.pick(oid)
