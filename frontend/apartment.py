@@ -137,7 +137,8 @@ class ApartmentMode:
         is); drawn if `current()` still holds when it is ready."""
         a = self.current
         rooms = [(plan, layout.placements) for plan, layout in zip(a.plans, a.layouts)]
-        self.session.placement.energy_curve(rooms, self._in_house(a, self.session.state.steps, -1), self.room_of, current)
+        steps = self._in_house(a, self.session.state.steps, -1)
+        self.session.placement.energy_curve(rooms, steps, self.room_of, current)
 
     def label(self, k: int | None = None) -> str:
         """A room's name on screen, e.g. `room 2 (kitchen)`; the room edited by default."""

@@ -30,6 +30,24 @@ ORBIT_LIMIT_JS = f"""
 }})();
 """
 
+# The canvas's size in CSS pixels, sent to a hidden input (its uuid replaces UUID) whenever it changes. viser's camera
+# messages give the drawing buffer's size, which is the CSS size times the device pixel ratio (2 on a HiDPI screen)
+# times viser's adaptive resolution factor (0.75-1, lowered while frames are slow), while the panel's width and the
+# page's mouse events are in CSS pixels.
+CANVAS_SIZE_JS = """
+(function report() {
+  const m = window.__viserMutable;
+  if (!m || !m.canvas || !m.canvas.clientWidth) { setTimeout(report, 200); return; }
+  let last = "";
+  setInterval(() => {
+    const size = [m.canvas.clientWidth, m.canvas.clientHeight];
+    if (String(size) === last) return;
+    last = String(size);
+    m.sendMessage({type: "GuiUpdateMessage", uuid: "UUID", updates: {value: size}});
+  }, 250);
+})();
+"""
+
 
 def _unit(v) -> np.ndarray:
     v = np.asarray(v, dtype=float)

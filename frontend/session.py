@@ -2,9 +2,9 @@
 
 Above the tabs: the status and progress lines, the view buttons (fit, top, VR user's view), undo / redo,
 the live checks and the picked object's panel (pose fields, 90 degree turns), so they show on every tab.
-Tabs: Task (instruction, room type, seed, solver, Generate; the task graph with role corrections) is here;
-Placement (frontend.placement_panel), Constraints (frontend.constraints_panel), Scenes (frontend.scenes_panel) and
-Headset (frontend.headset_panel) are panels of their own that act through the session's shared steps (`run`,
+Tabs: Task (instruction, room type, seed, solver, Generate; the task graph, corrected in frontend.graph_panel) is
+here; Placement (frontend.placement_panel), Constraints (frontend.constraints_panel), Scenes (frontend.scenes_panel)
+and Headset (frontend.headset_panel) are panels of their own that act through the session's shared steps (`run`,
 `busy`, `confirm`, `say`).
 """
 
@@ -27,6 +27,7 @@ from frontend.captions import graph_summary, metrics_table, parser_note, placing
 from frontend.checks import Finding, run_checks, summary
 from frontend.constraints_panel import ConstraintsPanel
 from frontend.graph_image import render as render_graph
+from frontend.graph_panel import GraphPanel
 from frontend.history import History
 from frontend.placement_panel import PlacementPanel
 from frontend.replay import RoomOf, one_room, room_at
@@ -37,13 +38,12 @@ from models.energy.exact import layout_energy
 from models.language import InstructionError
 from models.metrics.realism import checks as habit_checks
 from models.placement import ALL_OBJECTS, DEFAULT_SOLVER, SOLVERS, PlacementStep
-from models.values import Scene, TaskGraph, TaskObject
+from models.values import Scene, TaskGraph
 from models.values.apartment import APARTMENT
 from models.world import ROOM_TYPES, catalogue
 from studio_db import Store
 from studio_db.store import Edit
 
-ROLE_CHOICES = ("key", "anchor", "inference", "key + anchor", "anchor + inference")
 DEFAULT_INSTRUCTION = "Put a chilled bread on the counter"
 LIVE_RESCORE_S = 0.3
 PROGRESS_S = 0.2  # the progress line is updated at most this often while placing
@@ -72,7 +72,7 @@ class StudioSession:
         self.closed = False  # the tab has gone: nothing more is drawn
         self._run_js(camera.ORBIT_LIMIT_JS + UNSAVED_JS)
         self._build_gui()
-        client.camera.on_update(self._camera_moved)
+        self._run_js(camera.CANVAS_SIZE_JS.replace("UUID", self.canvas_size._impl.uuid))
 
     def close(self) -> None:
         """The tab closed: stop the step animation, whose thread would otherwise draw into a closed connection."""
@@ -84,6 +84,8 @@ class StudioSession:
     def _build_gui(self) -> None:
         gui = self.client.gui
         gui.configure_theme(control_width="large")
+        self.canvas_size = gui.add_vector2("Canvas (CSS px)", (0.0, 0.0), visible=False)  # reported by the page
+        self.canvas_size.on_update(lambda _: self._canvas_resized())
         self.status = gui.add_markdown("Type an instruction and press **Generate**.")
         self.progress = gui.add_markdown("")
         views = gui.add_button_group("View", ("Fit room", "Top view", "VR user's view"))
@@ -121,14 +123,7 @@ class StudioSession:
             self.graph_img = gui.add_image(np.full((300, 480, 3), 255, np.uint8), label="Task scene graph",
                                            visible=False)
             with gui.add_folder("Correct the task graph", expand_by_default=False):
-                self.role_object = gui.add_dropdown("Object", ("-",))
-                self.role_choice = gui.add_dropdown("Role", ROLE_CHOICES)
-                gui.add_button("Set role").on_click(lambda _: self.set_role())
-                self.new_object = gui.add_text("Add object type", "")
-                gui.add_button("Add object").on_click(lambda _: self.add_object())
-                gui.add_button("Remove object").on_click(lambda _: self.remove_object())
-                self.regenerate_button = gui.add_button("Regenerate from graph")
-                self.regenerate_button.on_click(lambda _: self.regenerate())
+                self.graph = GraphPanel(self, gui)
 
         with tabs.add_tab("Placement"):
             self.placement = PlacementPanel(self, gui)
@@ -175,12 +170,12 @@ class StudioSession:
                 yield False
                 return
             self.state.busy = True
-        self.generate_button.disabled = self.regenerate_button.disabled = True
+        self.generate_button.disabled = self.graph.regenerate_button.disabled = True
         self.progress.content = f"⏳ {what}…"
         try:
             yield True
         finally:
-            self.generate_button.disabled = self.regenerate_button.disabled = False
+            self.generate_button.disabled = self.graph.regenerate_button.disabled = False
             self.progress.content = ""
             self.state.busy = False
 
@@ -325,14 +320,10 @@ class StudioSession:
     def set_view(self, mode: str) -> None:
         """Frame the room beside the panel ("fit"), look straight down ("top", near-orthographic) or
         stand where the VR user stands ("vr")."""
-        scene = self.displayed()
-        cam = self.client.camera
-        if scene is None:
+        scene, cam, canvas = self.displayed(), self.client.camera, self.canvas()
+        if scene is None or canvas is None:
             return
-        try:
-            width, height = cam.image_width, cam.image_height
-        except AssertionError:  # the browser has not reported its camera yet
-            return
+        width, height = canvas
         room = scene.room
         if mode == "vr" and scene.vr_anchor is not None:
             v = scene.vr_anchor
@@ -355,10 +346,21 @@ class StudioSession:
             cam.look_at = look_at
         self.state.view, self.state.canvas = mode, (width, height)  # last: a reader sees the camera already moved
 
-    def _camera_moved(self, cam) -> None:
-        """Refit after the window is resized (the canvas size changed), keeping the current kind of view."""
-        size = (cam.image_width, cam.image_height)
-        if self.displayed() is not None and self.state.canvas != (0, 0) and size != self.state.canvas:
+    def canvas(self) -> tuple[int, int] | None:
+        """The canvas's size in CSS pixels, as the page reports it (camera.CANVAS_SIZE_JS); until it has, the size of
+        the camera's drawing buffer (the same where the device pixel ratio is 1); None before either."""
+        width, height = self.canvas_size.value
+        if width > 0 and height > 0:
+            return int(width), int(height)
+        try:
+            return self.client.camera.image_width, self.client.camera.image_height
+        except AssertionError:  # the browser has not reported its camera yet
+            return None
+
+    def _canvas_resized(self) -> None:
+        """Refit after the window is resized (the canvas's CSS size changed), keeping the current kind of view; a
+        change of the drawing buffer alone (viser's adaptive resolution) moves nothing."""
+        if self.displayed() is not None and self.state.canvas != (0, 0) and self.canvas() != self.state.canvas:
             self.set_view(self.state.view)
 
     # ---- panels -----------------------------------------------------------------------------------
@@ -367,7 +369,7 @@ class StudioSession:
         g = self.state.gen.task_graph
         self.graph_md.content = self.apartment.summary() if self.apartment.current else graph_summary(g)
         threading.Thread(target=self.draw_graph, args=(g,), daemon=True).start()
-        self.role_object.options = tuple(o.type for o in g.objects) or ("-",)
+        self.graph.update()
         self.constraints.update()
 
     def draw_graph(self, graph: TaskGraph) -> None:
@@ -566,61 +568,3 @@ class StudioSession:
             self.pick(self.selected)
         self.set_unsaved(True)
         self.say(f"{verb}: {snap.label}.")
-
-    # ---- task graph corrections -------------------------------------------------------------------
-
-    def _graph_edit(self, objects: list[TaskObject], note: str) -> None:
-        gen = self.state.gen
-        graph = gen.task_graph.model_copy(update={"objects": objects})
-        edit = Edit("task-graph", note, [o.model_dump() for o in gen.task_graph.objects],
-                    [o.model_dump() for o in objects])
-        self.history.record(f"task graph {note}", self.state.values)
-        self.state.values = replace(self.state.values, gen=Generation(graph, gen.room_plan, gen.plan, gen.layout,
-                                                                       gen.scene), edits=self.state.edits + (edit,))
-        self.refresh_panels()
-        self.set_unsaved(True)
-        self.say(f"Task graph edited ({note}). Press **Regenerate from graph** to rebuild the "
-                 f"{'apartment' if self.apartment.current else 'room'}.")
-
-    def set_role(self) -> None:
-        gen = self.state.gen
-        if gen is None:
-            return
-        roles = [r.strip() for r in self.role_choice.value.split("+")]
-        objects = [TaskObject(type=o.type, roles=roles) if o.type == self.role_object.value else o
-                   for o in gen.task_graph.objects]
-        self._graph_edit(objects, f"{self.role_object.value} -> {self.role_choice.value}")
-
-    def add_object(self) -> None:
-        gen = self.state.gen
-        if gen is None:
-            return
-        try:
-            found = catalogue().object_type(self.new_object.value)
-        except ValueError as e:
-            self.say(f"**Error:** {str(e)[0].upper()}{str(e)[1:]}.")
-            return
-        self._graph_edit(gen.task_graph.objects + [TaskObject(type=found, roles=["inference"])], f"+{found}")
-
-    def remove_object(self) -> None:
-        gen = self.state.gen
-        if gen is None:
-            return
-        objects = [o for o in gen.task_graph.objects if o.type != self.role_object.value]
-        self._graph_edit(objects, f"-{self.role_object.value}")
-
-    def regenerate(self) -> None:
-        gen = self.state.gen
-        if gen is None:
-            return
-        with self.busy("Regenerating from the corrected graph") as free:
-            if not free:
-                return
-            graph: TaskGraph = gen.task_graph
-            keep = {o.type for o in graph.objects}
-            graph = graph.model_copy(update={"relations": [r for r in graph.relations if r[0] in keep and r[2] in keep]})
-            if self.apartment.current is not None:
-                self.apartment.regenerate(graph)
-                return
-            self.run(lambda obs: self.pipeline.generate_from_graph(graph, self.state.seed, self.state.solver, obs),
-                      fresh=False, record="regenerate from graph")

@@ -140,10 +140,12 @@ def settle(page, frames: int = 3):
 
 
 def screen_xy(session, point) -> tuple[float, float]:
-    """Pixel position in the page of a point in the browser's frame, seen by the tab's camera."""
+    """Position in the page (CSS pixels, as mouse events take it) of a point in the browser's frame, seen by the
+    tab's camera. Not the camera's drawing-buffer pixels: viser lowers its resolution while frames are slow (seen
+    under load: a 1400 x 900 page drawn at 1225 x 787), and a HiDPI screen doubles it."""
     cam = session.client.camera
     look = np.asarray(cam.look_at) - np.asarray(cam.position)
-    x, y = camera.project([point], cam.position, look, cam.fov, cam.image_width, cam.image_height)[0]
+    x, y = camera.project([point], cam.position, look, cam.fov, *session.canvas())[0]
     return float(x), float(y)
 
 

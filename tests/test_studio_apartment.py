@@ -137,6 +137,8 @@ def test_editing_a_room_of_an_apartment(browser, studio):  # noqa: F811
     # a real click on the living room's sofa makes the living room the room edited
     page.get_by_role("button", name="Top view").click()
     wait_until(page, lambda: session.state.view == "top", "the top view")
+    moved_at = session.client.camera.update_timestamp
+    wait_until(page, lambda: session.client.camera.update_timestamp > moved_at, "the browser's camera looking down")
     settle(page, 6)
     sofa = next(o for o in session.displayed().objects if o.type == "Sofa")
     page.mouse.click(*screen_xy(session, world(sofa.x, sofa.y + sofa.size.y / 2, sofa.z)))
@@ -197,7 +199,7 @@ def test_editing_a_room_of_an_apartment(browser, studio):  # noqa: F811
 
     page.get_by_role("tab", name="Task").click()  # a task-graph correction regenerates the whole apartment
     page.get_by_text("Correct the task graph").click()
-    choose(page, "Object", "Fridge", session.role_object)
+    choose(page, "Object", "Fridge", session.graph.object)
     page.get_by_role("button", name="Remove object").click()
     page.get_by_text(re.compile(r"Task graph edited \(-Fridge\).*rebuild the apartment")).wait_for(timeout=WAIT)
     page.get_by_role("button", name="Regenerate from graph").click()

@@ -13,8 +13,8 @@ import numpy as np
 import pytest
 from PIL import Image
 from studio_support import (  # noqa: F401 (browser, close_tabs and studio are fixtures)
-    WAIT, browser, choose, close_tabs, enter, field, generate, object_xy, open_studio, screen_xy, session_of, settle,
-    studio, wait_until)
+    _OPENED, VIEWPORT, WAIT, browser, choose, close_tabs, enter, field, generate, object_xy, open_studio, screen_xy,
+    session_of, settle, studio, wait_until)
 
 from frontend.camera import PANEL_PX, room_points
 from models.exports.procthor_house import to_house
@@ -77,6 +77,31 @@ def test_room_in_view_after_orbit_and_generate(browser, studio):
         return bool((corners[:, 0] >= 0).all() and (corners[:, 0] <= 1000 - PANEL_PX).all()
                     and (corners[:, 1] <= 760).all())
     wait_until(page, framed, "the room's floor inside the smaller window, left of the panel")
+
+
+def test_a_hidpi_screen_frames_the_room_beside_the_panel_and_clicks_pick(browser, studio):
+    """With two device pixels per CSS pixel the camera's drawing buffer is twice the page's size, while the panel
+    and the mouse are in CSS pixels: the page reports its CSS size, and the room is framed in the free part."""
+    before = set(studio.sessions)
+    context = browser.new_context(viewport=VIEWPORT, device_scale_factor=2)
+    _OPENED.append(context)
+    page = context.new_page()
+    page.goto(f"http://127.0.0.1:{studio.port}")
+    page.get_by_role("button", name="Generate").wait_for(timeout=WAIT)
+    session = session_of(studio, before)
+    wait_until(page, lambda: session.canvas() == (VIEWPORT["width"], VIEWPORT["height"]), "the page's CSS size")
+    generate(page, session, "Put a chilled bread on the counter", "kitchen")
+    settle(page, 6)
+    assert session.client.camera.image_width > VIEWPORT["width"]  # the drawing buffer: device pixels
+    free = VIEWPORT["width"] - PANEL_PX
+    corners = floor_corners(session, session.state.gen.scene.room)
+    assert (corners[:, 0] >= 0).all() and (corners[:, 0] <= free).all(), corners
+    shot = np.asarray(Image.open(io.BytesIO(page.screenshot())).convert("RGB"))  # device pixels
+    scale = shot.shape[1] / VIEWPORT["width"]
+    assert scale == 2 and floor_like(shot[:, :int(free * scale)]).mean() > 0.08
+    assert floor_like(shot[:, int((free + 20) * scale):]).mean() < 0.02  # the room is not under the panel
+    page.mouse.click(*object_xy(session, "fridge-0"))  # a click where the fridge is drawn picks it
+    wait_until(page, lambda: session.selected == "fridge-0", "the picked fridge")
 
 
 def test_drag_into_collision_warns_asks_before_saving_and_undo_restores(browser, studio):
