@@ -290,8 +290,9 @@ class StudioSession:
             self.view.clear()
             self.view.draw_room(gen.scene)
             self.view.draw_objects(*self._shown(), labels)
-            step = self.state.steps[self.state.shown - 1] if 0 < self.state.shown <= len(self.state.steps) else None
-            self.view.heat_map(step if self.placement.heat.value and self.state.shown < len(self.state.steps) else None)
+            shown, steps = self.state.shown, self.state.steps
+            step = steps[shown - 1] if 0 < shown <= len(steps) else None
+            self.view.heat_map(step if self.placement.heat.value and shown < len(steps) else None)
         self._place_controls()
 
     def room_of(self) -> RoomOf:
