@@ -125,3 +125,23 @@ def test_the_kernels_run_where_numba_can_cache_nothing():
             "assert reachable_from(np.zeros((2, 2), bool), np.eye(2, dtype=bool)).all()")
     env = {**os.environ, "NUMBA_CACHE_LOCATOR_CLASSES": "IPythonCacheLocator"}
     subprocess.run([sys.executable, "-c", code], check=True, timeout=120, env=env)
+
+
+def test_the_occupancy_grid_keeps_its_cell_centres_and_marks_what_it_marked_before():
+    """The centres are made once per grid (the studio's checks ask about one room on every move); the blocked cells
+    are those of centres made afresh."""
+    import shapely
+
+    from models.energy import navigation as nav
+    grid = nav.Grid(3.1, 2.7)
+    polygons = [Footprint(1.0, 1.0, 0.8, 0.5, 90).polygon(), Footprint(2.4, 2.0, 1.2, 0.6, 0).polygon()]
+    before = nav._cell_centres.cache_info().hits
+    blocked = nav.blocked_by_polygons(grid, polygons)
+    assert nav._cell_centres(grid) is nav._cell_centres(nav.Grid(3.1, 2.7))
+    assert nav._cell_centres.cache_info().hits >= before + 1
+    gx, gz = grid.mesh()
+    fresh = shapely.points(gx, gz)
+    walls = (gx < nav.ROBOT_RADIUS) | (gz < nav.ROBOT_RADIUS) | (gx > grid.width - nav.ROBOT_RADIUS) | \
+        (gz > grid.depth - nav.ROBOT_RADIUS)
+    expected = walls | np.any([shapely.dwithin(p, fresh, nav.ROBOT_RADIUS) for p in polygons], axis=0)
+    assert blocked.any() and (blocked == expected).all()

@@ -10,6 +10,7 @@ question A* answers (does a path exist) without searching once per target.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 import shapely
@@ -22,6 +23,7 @@ from models.geometry import Footprint
 from models.values import Room
 
 DOOR_DEPTH = 0.6
+GRIDS_KEPT = 64  # rooms whose cell centres are kept (`_cell_centres`)
 
 
 @dataclass(frozen=True)
@@ -52,13 +54,22 @@ def door_boxes(room: Room) -> list[tuple[float, float, float, float]]:
     return out
 
 
+@lru_cache(maxsize=GRIDS_KEPT)
+def _cell_centres(grid: Grid) -> np.ndarray:
+    """The grid's cell centres as shapely points, made once per grid: they cost more than the tests against them
+    (the studio's checks and the metrics ask about the same room again and again)."""
+    centres = shapely.points(*grid.mesh())
+    centres.flags.writeable = False
+    return centres
+
+
 def blocked_by_polygons(grid: Grid, polygons: list[Polygon], radius: float = ROBOT_RADIUS) -> np.ndarray:
     """Exact: cells whose centre is within `radius` of a polygon or of a wall."""
     gx, gz = grid.mesh()
     blocked = (gx < radius) | (gz < radius) | (gx > grid.width - radius) | (gz > grid.depth - radius)
-    points = shapely.points(gx, gz) if polygons else None  # built once: it costs more than a dwithin
+    centres = _cell_centres(grid) if polygons else None
     for poly in polygons:
-        blocked |= shapely.dwithin(poly, points, radius)
+        blocked |= shapely.dwithin(poly, centres, radius)
     return blocked
 
 
