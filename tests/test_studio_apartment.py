@@ -186,6 +186,22 @@ def test_editing_a_room_of_an_apartment(browser, studio):  # noqa: F811
     page.get_by_text(re.compile(rf"Moved {sofa.id} to \({target:.2f}")).wait_for(timeout=WAIT)
     assert abs(session.state.gen.layout.placement(sofa.id).x - (target - offset.x)) < 1e-3
     assert abs(session.apartment.current.layouts[1].placement(sofa.id).x - (target - offset.x)) < 1e-3
+    typed = session.state.gen.layout.placement(sofa.id)
+
+    # a real drag of the gizmo's x arrow, in the house: the layout takes it in the room's frame
+    settle(page, 6)
+    top = np.asarray(session.controls.position)
+    arrow, shift = 0.5 * session.controls.scale, 0.4
+    page.mouse.move(*screen_xy(session, top + (arrow, 0, 0)))
+    page.mouse.down()
+    page.mouse.move(*screen_xy(session, top + (arrow + shift, 0, 0)), steps=15)
+    page.mouse.up()
+    wait_until(page, lambda: session.state.gen.layout.placement(sofa.id).x != typed.x, "the dragged sofa")
+    dragged = session.state.gen.layout.placement(sofa.id)
+    shown = next(o for o in session.displayed().objects if o.id == sofa.id)
+    assert abs(dragged.x - typed.x - shift) < 0.15 and dragged.z == typed.z
+    assert abs(shown.x - offset.x - dragged.x) < 1e-3 and abs(shown.z - offset.z - dragged.z) < 1e-3
+    assert session.apartment.current.layouts[1].placement(sofa.id) == dragged
     moved = session.apartment.current
 
     page.get_by_role("button", name="Re-place the rest").click()
@@ -222,5 +238,5 @@ def test_editing_a_room_of_an_apartment(browser, studio):  # noqa: F811
     scene_id = int(re.search(r"scene (\d+)", saved.inner_text()).group(1))
     assert studio.store.scene(scene_id, 1) == moved
     kinds = [e["kind"] for e in studio.store.edits(scene_id)]
-    assert kinds[:6] == ["constraints", "move", "re-place", "undo", "task-graph", "undo"]
-    assert set(kinds[6:]) <= {"override"}
+    assert kinds[:7] == ["constraints", "move", "move", "re-place", "undo", "task-graph", "undo"]
+    assert set(kinds[7:]) <= {"override"}
