@@ -89,7 +89,7 @@ class StudioSession:
         self.status = gui.add_markdown("Type an instruction and press **Generate**.")
         self.progress = gui.add_markdown("")
         views = gui.add_button_group("View", ("Fit room", "Top view", "VR user's view"))
-        views.on_click(lambda e: self.set_view({"Fit room": "fit", "Top view": "top",
+        views.on_click(lambda e: self.set_view({"Fit room": "room", "Top view": "top",
                                                 "VR user's view": "vr"}[e.target.value]))
         edits = gui.add_button_group("Edits", ("Undo", "Redo"))
         edits.on_click(lambda e: self.undo() if e.target.value == "Undo" else self.redo())
@@ -319,8 +319,9 @@ class StudioSession:
     # ---- the camera -------------------------------------------------------------------------------
 
     def set_view(self, mode: str) -> None:
-        """Frame the room beside the panel ("fit"), look straight down ("top", near-orthographic) or
-        stand where the VR user stands ("vr")."""
+        """Frame the scene beside the panel ("fit": the room, or the whole apartment), frame the room ("room": in an
+        apartment, the one edited), look straight down on the scene ("top", near-orthographic) or stand where the
+        VR user stands ("vr")."""
         scene, cam, canvas = self.displayed(), self.client.camera, self.canvas()
         if scene is None or canvas is None:
             return
@@ -336,10 +337,13 @@ class StudioSession:
                                            fov, width, height)
         else:
             fov = camera.DEFAULT_FOV
-            direction = camera.framing_direction(cam.position, cam.look_at) if mode == "fit" and \
+            direction = camera.framing_direction(cam.position, cam.look_at) if mode in ("fit", "room") and \
                 self.state.runs > 1 else camera.DEFAULT_DIRECTION
-            position, look_at = camera.fit(camera.room_points(room.width, room.depth), direction, fov,
-                                           width, height)
+            points = camera.room_points(room.width, room.depth)
+            if mode == "room" and self.apartment.current is not None:  # the room edited, where it is in the house
+                hr = self.apartment.current.floorplan.rooms[self.state.values.room]
+                points = camera.room_points(hr.room.width, hr.room.depth) + world(hr.x, 0.0, hr.z)
+            position, look_at = camera.fit(points, direction, fov, width, height)
         with self.client.atomic():
             self.view.set_top_view(mode == "top")
             cam.fov = fov

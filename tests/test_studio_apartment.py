@@ -10,13 +10,14 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from studio_support import (SCREENSHOTS, WAIT, browser, choose, close_tabs, dismiss_notices, enter,  # noqa: F401
+from studio_support import (SCREENSHOTS, VIEWPORT, WAIT, browser, choose, close_tabs, dismiss_notices, enter,  # noqa: F401
                             field, open_studio, screen_xy, session_of, settle, studio, wait_until)
 
 pytest.importorskip("playwright")
 
 from app.pipeline import room_generation  # noqa: E402
 from frontend.apartment import ApartmentMode, first_room  # noqa: E402
+from frontend.camera import PANEL_PX, room_points  # noqa: E402
 from frontend.replay import energy_after_steps, room_at  # noqa: E402
 from frontend.view import world  # noqa: E402
 
@@ -147,6 +148,17 @@ def test_editing_a_room_of_an_apartment(browser, studio):  # noqa: F811
     assert session.state.values.room == 1 and set(session.constraints.object.options) == \
         {o.id for o in first.plans[1].objects}
     assert session.controls is not None
+    page.get_by_role("button", name="Fit room").click()  # frames the room edited, not the house
+    wait_until(page, lambda: session.state.view == "room", "the living room framed")
+    living, free = first.floorplan.rooms[1], VIEWPORT["width"] - PANEL_PX
+
+    def living_room_framed() -> bool:  # the browser may report a camera update sent before the new view reached it
+        floor = room_points(living.room.width, living.room.depth, 0.0) + world(living.x, 0.0, living.z)
+        corners = np.array([screen_xy(session, p) for p in floor])
+        inside = (corners[:, 0] >= 0).all() and (corners[:, 0] <= free).all() and (corners[:, 1] >= 0).all()
+        fills = np.ptp(corners[:, 0]) > 0.8 * free or np.ptp(corners[:, 1]) > 0.8 * VIEWPORT["height"]
+        return bool(inside and fills)  # it fills the free area (framing the house, it fills about 0.6 of it)
+    wait_until(page, living_room_framed, "the living room filling the free area")
 
     # a constraint edit re-places the living room only, as the pipeline re-plans that room alone
     original = field(page, "Raw constraints").input_value()
