@@ -213,11 +213,12 @@ def generation_of(scene: Scene) -> Generation:
     return Generation(scene.task_graph, rp, plan, layout, scene)
 
 
-def room_generation(apartment: Apartment, k: int) -> Generation:
+def room_generation(apartment: Apartment, k: int, graph: TaskGraph | None = None) -> Generation:
     """Room `k` of an apartment (floorplan order) as a single room in its own frame, to edit like one; the edited
-    room goes back with models.scene.apartment.with_room."""
-    return Generation(apartment.task_graph, apartment.plan.room_plans[k], apartment.plans[k], apartment.layouts[k],
-                      apartment.scenes[k])
+    room goes back with models.scene.apartment.with_room. `graph`: a corrected task graph it carries instead of
+    the apartment's (a designer's corrections, not yet regenerated)."""
+    return Generation(graph or apartment.task_graph, apartment.plan.room_plans[k], apartment.plans[k],
+                      apartment.layouts[k], apartment.scenes[k])
 
 
 def dump(value) -> str:

@@ -157,7 +157,7 @@ class ApartmentMode:
         k = int(self.room_of(object_id)[1:]) - 1
         if k == s.state.values.room or s.state.busy:
             return
-        gen = replace(room_generation(self.current, k), task_graph=s.state.gen.task_graph)  # corrections kept
+        gen = room_generation(self.current, k, s.state.gen.task_graph)  # the graph's corrections kept
         with s.lock:
             s.state.values = replace(s.state.values, gen=gen, room=k, reference=None)
         s.constraints.update()
@@ -171,7 +171,7 @@ class ApartmentMode:
         k = s.state.values.room
         apartment = with_room(self.current, k, gen.plan, gen.layout, s.state.seed)
         old = s.state.steps
-        room_now = replace(room_generation(apartment, k), task_graph=gen.task_graph)  # the graph's corrections kept
+        room_now = room_generation(apartment, k, gen.task_graph)  # the graph's corrections kept
         if steps is None:
             return room_now, old, apartment
         room = f"r{k + 1}"
