@@ -14,7 +14,8 @@ from fastapi.responses import StreamingResponse
 from pydantic import AfterValidator, BaseModel, Field, model_validator
 
 from app.bridge import bridge_for, mount
-from app.pipeline import Pipeline, dump, outside, strangers
+from app.editing import MAX_EDITS, EditError, EditStep, apply_edits
+from app.pipeline import Generation, Pipeline, dump, outside, strangers
 from models.exports.apartment import apartment_house
 from models.exports.stored import glb_of, house_of
 from models.language import InstructionError, check_instruction
@@ -100,6 +101,32 @@ class AcceptRequest(BaseModel):
         return self.scene or self.apartment
 
 
+class EditRequest(BaseModel):
+    """Edits of a scene as POST /generate returned it or GET /scenes/.../versions/N gives it back: `scene`, or
+    `apartment` and the number of the `room` edited (from 1, as the floorplan's `room|N`)."""
+
+    scene: Scene | None = None
+    apartment: Apartment | None = None
+    room: int | None = Field(None, ge=1, examples=[2])
+    edits: list[EditStep] = Field(min_length=1, max_length=MAX_EDITS)
+    seed: int | None = Field(None, ge=0, le=2**31 - 1)  # the scene's own when left out
+    solver: Annotated[str, AfterValidator(_known_solver)] = DEFAULT_SOLVER
+
+    @model_validator(mode="after")
+    def _one_value(self) -> EditRequest:
+        if (self.scene is None) == (self.apartment is None):
+            raise ValueError("give exactly one of scene (a single room) and apartment")
+        return self
+
+
+def _findings(found) -> list[dict]:
+    return [{"kind": f.kind, "text": f.text, "objects": list(f.objects)} for f in found]
+
+
+def _single(gen: Generation) -> dict:
+    return {k: json.loads(dump(getattr(gen, k))) for k in ("task_graph", "plan", "layout", "scene")}
+
+
 def _apartment(apartment: Apartment) -> dict:
     return {"task_graph": json.loads(dump(apartment.task_graph)), "apartment": json.loads(dump(apartment)),
             "house": apartment_house(apartment)}
@@ -134,13 +161,27 @@ def create_app(store: Store, pipeline: Pipeline | None = None) -> FastAPI:
             raise HTTPException(422, [{"loc": ["body", "instruction"], "msg": str(e)}]) from e
         except (ApartmentError, FloorplanError) as e:
             raise HTTPException(422, [{"loc": ["body", "rooms"], "msg": str(e)}]) from e
-        return {k: json.loads(dump(getattr(gen, k))) for k in ("task_graph", "plan", "layout", "scene")}
+        return _single(gen)
 
     @app.post("/place")
     def place(req: PlaceRequest) -> dict:
         """Place a plan's objects (the layout JSON of interfaces.md); the `keep` poses (object id -> x, z,
         rotation) stay as they are and the rest is placed around them."""
         return json.loads(dump(pipeline.place(req.plan, req.seed, req.solver, keep=req.keep or None)))
+
+    @app.post("/edit")
+    def edit(req: EditRequest) -> dict:
+        """The studio's edits, in order: `move` an object, edit the `constraints` text (placed again from the first
+        object it changes), `replace_around` named objects. Nothing is stored: the answer has POST /generate's
+        shape plus `edits` (the log to store with POST /scenes) and `findings` (the checks the studio runs before
+        saving; a single room's metric drops are against the scene sent)."""
+        try:
+            done = apply_edits(pipeline, req.scene or req.apartment, req.edits, req.room, req.seed, req.solver)
+        except EditError as e:
+            raise HTTPException(422, [{"loc": ["body", *e.loc], "msg": str(e)}]) from e
+        log = [{"kind": e.kind, "target": e.target, "before": e.before, "after": e.after} for e in done.log]
+        shape = _apartment(done.value) if req.apartment else _single(done.room)
+        return {**shape, "edits": log, "findings": _findings(done.findings)}
 
     @app.post("/place/steps", response_class=StreamingResponse,
               responses={200: {"content": {NDJSON: {}}, "description": "one JSON object per line"}})

@@ -237,14 +237,15 @@ def _write_texts(out_dir: Path, texts: dict[str, str]) -> list[Path]:
 
 def write_apartment(apartment: Apartment, out_dir: Path) -> list[Path]:
     """`generate --room-type apartment`: the task graph, the floorplan, rooms/<n>-<type>/plan.json and
-    layout.json per room (each one readable by `h3ds place`), house.json and scene.glb of the whole house."""
+    layout.json per room (each one readable by `h3ds place`), house.json and scene.glb of the whole house, and
+    apartment.json, the whole value (what `h3ds edit` and the API's POST /edit and /scenes take)."""
     from models.exports.apartment import apartment_glb, apartment_house
 
     texts = {"task_graph.json": dump(apartment.task_graph), "floorplan.json": json.dumps(
                  {**json.loads(dump(apartment.floorplan)), "assignment": apartment.plan.assignment}, indent=2),
              "navigation.json": json.dumps({"key_nav": apartment.key_nav, "e_nav": apartment.e_nav,
                                             **apartment.path.model_dump(mode="json")}, indent=2),
-             "house.json": json.dumps(apartment_house(apartment), indent=2)}
+             "house.json": json.dumps(apartment_house(apartment), indent=2), "apartment.json": dump(apartment)}
     for hr, plan, layout in zip(apartment.floorplan.rooms, apartment.plans, apartment.layouts):
         folder = f"rooms/{hr.id.split('|')[-1]}-{hr.room.type.replace(' ', '-')}"
         texts[f"{folder}/plan.json"] = dump(plan)
@@ -255,13 +256,14 @@ def write_apartment(apartment: Apartment, out_dir: Path) -> list[Path]:
 
 
 def write_generation(gen: Generation, out_dir: Path) -> list[Path]:
-    """The five files of `h3ds generate`."""
+    """The five files of `h3ds generate` (interfaces.md) and scene.json, the Scene with what it was made from
+    (what `h3ds edit` and the API's POST /edit and /scenes take)."""
     from models.exports.glb import to_glb  # trimesh takes ~0.6 s to import: only when a GLB is written
     from models.exports.procthor_house import to_house
 
     out_dir.mkdir(parents=True, exist_ok=True)
     texts = {"task_graph.json": dump(gen.task_graph), "plan.json": dump(gen.plan), "layout.json": dump(gen.layout),
-             "house.json": json.dumps(to_house(gen.scene), indent=2)}
+             "house.json": json.dumps(to_house(gen.scene), indent=2), "scene.json": dump(gen.scene)}
     paths = _write_texts(out_dir, texts)
     (out_dir / "scene.glb").write_bytes(to_glb(gen.scene))
     paths.append(out_dir / "scene.glb")

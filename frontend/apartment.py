@@ -22,8 +22,8 @@ import numpy as np
 
 from app.pipeline import Generation, room_generation
 from frontend.captions import parser_note
-from frontend.checks import Finding, run_checks
 from frontend.state import Values
+from models.checks import Finding, apartment_findings, room_label
 from models.language import InstructionError
 from models.placement import PlacementStep
 from models.planning.apartment_planner import ApartmentError, parse_rooms
@@ -142,8 +142,7 @@ class ApartmentMode:
 
     def label(self, k: int | None = None) -> str:
         """A room's name on screen, e.g. `room 2 (kitchen)`; the room edited by default."""
-        k = self.session.state.values.room if k is None else k
-        return f"room {k + 1} ({self.current.floorplan.rooms[k].room.type})"
+        return room_label(self.current, self.session.state.values.room if k is None else k)
 
     def offset(self) -> tuple[float, float]:
         """Where the room edited has its (0, 0) corner in the house."""
@@ -181,15 +180,7 @@ class ApartmentMode:
         return room_now, spliced, apartment
 
     def findings(self) -> list[Finding]:
-        """Every room's checks (each in its own frame, no metric reference) and the task objects the robot cannot
-        reach through the doors."""
-        a, out = self.current, []
-        for k, (plan, layout, scene) in enumerate(zip(a.plans, a.layouts, a.scenes)):
-            out += [replace(f, text=f"{self.label(k)}: {f.text}") for f in run_checks(plan, layout, scene)[0]
-                    if f.kind != "unreachable"]
-        out += [Finding("unreachable", f"the robot cannot reach task object `{oid}` from the entrance", (oid,))
-                for oid in a.path.unreachable]
-        return out
+        return apartment_findings(self.current)
 
     def save(self, overridden: list[Finding]) -> None:
         """Store the apartment as a new scene, or as the next version of the stored apartment on screen, with the

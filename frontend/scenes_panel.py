@@ -12,7 +12,7 @@ from dataclasses import replace
 
 from app.pipeline import Generation, generation_of
 from frontend.captions import slug
-from frontend.checks import Finding
+from models.checks import Finding
 from models.exports.stored import glb_of, house_of
 from models.placement import SOLVERS
 from models.values import Scene

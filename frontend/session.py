@@ -24,7 +24,7 @@ from app.pipeline import Generation, Pipeline, pose_of
 from frontend import camera
 from frontend.apartment import ApartmentMode
 from frontend.captions import graph_summary, metrics_table, parser_note, placing_progress, unplaced_note
-from frontend.checks import Finding, run_checks, summary
+from frontend.checks import summary
 from frontend.constraints_panel import ConstraintsPanel
 from frontend.graph_image import render as render_graph
 from frontend.graph_panel import GraphPanel
@@ -34,6 +34,7 @@ from frontend.replay import RoomOf, one_room, room_at
 from frontend.scenes_panel import ScenesPanel
 from frontend.state import State, Values
 from frontend.view import SceneView, world
+from models.checks import Finding, run_checks
 from models.energy.exact import layout_energy
 from models.language import InstructionError
 from models.metrics.realism import checks as habit_checks

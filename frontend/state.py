@@ -5,7 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from app.pipeline import Generation
-from frontend.checks import Finding
+from models.checks import Finding
 from models.metrics import SceneMetrics
 from models.placement import DEFAULT_SOLVER, PlacementStep
 from models.values.apartment import Apartment

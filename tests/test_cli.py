@@ -24,7 +24,7 @@ def test_installed_command_generates_all_five_files(tmp_path):
                                   "--out", str(out)], capture_output=True, text=True, timeout=120)
     assert proc.returncode == 0, proc.stderr
     assert sorted(p.name for p in out.iterdir()) == sorted(
-        ["task_graph.json", "plan.json", "layout.json", "house.json", "scene.glb"])
+        ["task_graph.json", "plan.json", "layout.json", "house.json", "scene.glb", "scene.json"])
     house = json.loads((out / "house.json").read_text())
     types = {o["id"].split("|")[0] for o in house["objects"]} | \
             {c["id"].split("|")[0] for o in house["objects"] for c in o["children"]}

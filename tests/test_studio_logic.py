@@ -5,7 +5,7 @@ import re
 import pytest
 
 from frontend import camera
-from frontend.checks import run_checks
+from models.checks import run_checks
 from frontend.history import History
 from frontend.view import label_layout
 from models.values import TaskGraph

@@ -12,7 +12,7 @@ import time
 
 from app.bench.generate import pick_instructions
 from app.pipeline import Pipeline
-from frontend.checks import run_checks
+from models.checks import run_checks
 from models.energy import navigation
 from models.energy.exact import layout_energy
 from models.language import RuleParser

@@ -1,0 +1,138 @@
+"""A designer's edits outside the studio (`POST /edit`, `h3ds edit`): the studio's moves, constraint edits and
+re-places, on a single room or on one room of an apartment.
+
+Each edit goes through the same `Pipeline` call as in the studio; an apartment's room is edited in its own frame
+and put back with `with_room`, so the robot's path and Key_NAV through the doors follow. The result carries the
+edit log as the studio stores it with a version, and the checks the studio runs before saving.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Annotated, Literal
+
+from pydantic import BaseModel, Field
+
+from app.pipeline import Generation, Pipeline, generation_of, room_generation
+from models.checks import Finding, apartment_findings, room_label, run_checks
+from models.metrics import scene_metrics
+from models.scene.apartment import with_room
+from models.values import Scene
+from models.values.apartment import Apartment
+from studio_db.store import Edit
+
+MAX_EDITS = 100  # edits in one request
+MAX_CONSTRAINT_TEXT = 100_000  # characters of an edited constraint text
+
+
+class Move(BaseModel):
+    """One object to a new pose, everything else as it was (a drag or a typed pose in the studio). `x`, `z` in the
+    frame of the room edited (its layout's); `rotation` in degrees, the object's own when left out."""
+
+    kind: Literal["move"] = "move"
+    object: str = Field(min_length=1, max_length=200, examples=["fridge-0"])
+    x: float
+    z: float
+    rotation: float | None = None
+
+
+class Constraints(BaseModel):
+    """The room's constraint text edited (Holodeck's lines): placed again from the first object it changes."""
+
+    kind: Literal["constraints"] = "constraints"
+    text: str = Field(max_length=MAX_CONSTRAINT_TEXT, examples=["fridge-0 | edge | near, countertop-0"])
+
+
+class ReplaceAround(BaseModel):
+    """The named objects stay where they are; the placer places the others again around them (the studio's
+    *Re-place the rest*)."""
+
+    kind: Literal["replace_around"] = "replace_around"
+    objects: list[str] = Field(min_length=1, max_length=200, examples=[["fridge-0"]])
+
+
+EditStep = Annotated[Move | Constraints | ReplaceAround, Field(discriminator="kind")]
+
+
+class EditError(ValueError):
+    """An edit that does not fit the scene; `loc` names the field, as a 422 does."""
+
+    def __init__(self, loc: tuple, message: str):
+        super().__init__(message)
+        self.loc = loc
+
+
+@dataclass(frozen=True)
+class Edited:
+    value: Scene | Apartment  # the scene, or the apartment with the room edited put back
+    room: Generation  # the room edited, in its own frame
+    log: list[Edit]  # one row per edit, as the studio stores them with a version
+    findings: list[Finding]  # the checks after the edits (a single room's against the scene before them)
+
+
+def room_of(value: Scene | Apartment, room: int | None) -> Generation:
+    """The room to edit: the scene, or room number `room` (from 1, as `room|N`) of an apartment."""
+    if isinstance(value, Scene):
+        if room is not None:
+            raise EditError(("room",), f"scene {value.id} is a single room: leave room out")
+        try:
+            return generation_of(value)
+        except ValueError as e:
+            raise EditError(("scene",), str(e)) from e
+    if room is None or not 1 <= room <= len(value.plans):
+        given = "none was given" if room is None else f"not {room}"
+        raise EditError(("room",), f"apartment {value.id} has rooms 1-{len(value.plans)}: say which one to edit "
+                                   f"({given})")
+    return room_generation(value, room - 1)
+
+
+def generated_seed(scene: Scene) -> int:
+    """The seed a scene was generated with (what the studio re-plans with)."""
+    return next((p.seed for p in scene.provenance if p.stage == "scene" and p.seed is not None), 0)
+
+
+def apply_edits(pipeline: Pipeline, value: Scene | Apartment, edits: list[EditStep], room: int | None = None,
+                seed: int | None = None, solver: str | None = None) -> Edited:
+    """`edits` in order on the scene or on room `room` of the apartment; `seed`: the one it was generated with if
+    left out. Raises EditError naming the edit that does not fit; nothing is changed then."""
+    gen = room_of(value, room)
+    seed = generated_seed(gen.scene) if seed is None else seed
+    where = room_label(value, room - 1) if isinstance(value, Apartment) else f"scene {value.id}"
+    before, log = gen, []
+    for i, edit in enumerate(edits):
+        gen, row = _apply(pipeline, gen, edit, seed, solver, ("edits", i), where)
+        log.append(row)
+    if isinstance(value, Scene):
+        found, _ = run_checks(gen.plan, gen.layout, gen.scene, scene_metrics(before.plan, before.layout))
+        return Edited(gen.scene, gen, log, found)
+    house = with_room(value, room - 1, gen.plan, gen.layout, seed)
+    return Edited(house, gen, log, apartment_findings(house))
+
+
+def _apply(pipeline: Pipeline, gen: Generation, edit: EditStep, seed: int, solver: str | None, loc: tuple,
+           where: str) -> tuple[Generation, Edit]:
+    ids = {o.id for o in gen.plan.objects}
+    if isinstance(edit, Move):
+        p = gen.layout.placement(edit.object)
+        if p is None:
+            problem = "is not an object of" if edit.object not in ids else "was left out of the layout of"
+            raise EditError((*loc, "object"), f"{edit.object} {problem} {where}; its placed objects: "
+                                              f"{', '.join(q.id for q in gen.layout.placements)}")
+        w, d = gen.plan.room.width, gen.plan.room.depth
+        if not (0 <= edit.x <= w and 0 <= edit.z <= d):
+            raise EditError(loc, f"({edit.x}, {edit.z}) is outside the {w} x {d} m room of {where} (x, z are in the "
+                                 "room's own frame)")
+        rotation = p.rotation if edit.rotation is None else edit.rotation
+        moved = pipeline.move(gen, edit.object, edit.x, edit.z, rotation, seed)
+        return moved, Edit("move", edit.object, [p.x, p.z, p.rotation],
+                           [round(edit.x, 3), round(edit.z, 3), rotation % 360])
+    if isinstance(edit, Constraints):
+        return pipeline.replan(gen, edit.text, seed, solver), Edit("constraints", "plan", gen.plan.constraints,
+                                                                    edit.text)
+    if unknown := [o for o in edit.objects if o not in ids]:
+        raise EditError((*loc, "objects"), f"not objects of {where}: {', '.join(unknown)}")
+    try:
+        replaced = pipeline.replace_around(gen, edit.objects, seed, solver)
+    except ValueError as e:  # none of them is placed
+        raise EditError((*loc, "objects"), str(e)) from e
+    return replaced, Edit("re-place", ", ".join(edit.objects), None, None)
