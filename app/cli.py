@@ -197,6 +197,7 @@ def cmd_edit(args) -> int:
         done = apply_edits(Pipeline(), value, [_edit_step(args)], args.room, args.seed, args.solver)
     except EditError as e:
         option = {"room": "--room", "scene": str(folder / "scene.json")}.get(e.loc[0], _action(args))
+        option = "--to-room" if e.loc[-1] == "to_room" else option
         raise BadInput(f"{option}: {e}") from e
     out = Path(args.out) if args.out else folder
     paths = write_generation(done.room, out) if done.value is done.room.scene else write_apartment(done.value, out)
@@ -242,7 +243,10 @@ def _edit_step(args):
             numbers = [float(v) for v in args.move[1:]]
         except ValueError as e:
             raise BadInput(f"--move: X, Z and ROTATION are numbers ({e})") from e
-        return Move(object=args.move[0], x=numbers[0], z=numbers[1], rotation=numbers[2] if len(numbers) > 2 else None)
+        return Move(object=args.move[0], x=numbers[0], z=numbers[1], rotation=numbers[2] if len(numbers) > 2 else None,
+                    to_room=args.to_room)
+    if args.to_room is not None:
+        raise BadInput("--to-room goes with --move")
     if args.constraints:
         try:
             text = sys.stdin.read() if args.constraints == "-" else Path(args.constraints).read_text()
@@ -489,6 +493,8 @@ def build_parser() -> argparse.ArgumentParser:
                       "the others again around them")
     p.add_argument("--room", type=int, default=None, help="an apartment's room to edit: its number, as in "
                    "rooms/N-TYPE")
+    p.add_argument("--to-room", type=int, default=None, metavar="N", help="with --move in an apartment: carry the "
+                   "object into room N (X, Z in that room's frame); it takes that room's id prefix (r3-...)")
     p.add_argument("--seed", type=int, default=None, help="default: the seed the scene was generated with")
     p.add_argument("--solver", default=None, help=SOLVER_HELP)
     p.add_argument("--out", metavar="DIR", default=None, help="write the edited scene here (default: DIR itself)")

@@ -1,5 +1,5 @@
 """A designer's edits outside the studio (`POST /edit`, `h3ds edit`): the studio's moves, constraint edits and
-re-places, on a single room or on one room of an apartment.
+re-places, on a single room or on one room of an apartment, and carrying an object into another room.
 
 Each edit goes through the same `Pipeline` call as in the studio; an apartment's room is edited in its own frame
 and put back with `with_room`, so the robot's path and Key_NAV through the doors follow. The result carries the
@@ -17,6 +17,7 @@ from app.pipeline import Generation, Pipeline, generation_of, room_generation
 from models.checks import Finding, apartment_findings, room_label, run_checks
 from models.metrics import scene_metrics
 from models.scene.apartment import with_room
+from models.scene.carry import carry
 from models.values import Scene
 from models.values.apartment import Apartment
 from studio_db.store import Edit
@@ -27,13 +28,15 @@ MAX_CONSTRAINT_TEXT = 100_000  # characters of an edited constraint text
 
 class Move(BaseModel):
     """One object to a new pose, everything else as it was (a drag or a typed pose in the studio). `x`, `z` in the
-    frame of the room edited (its layout's); `rotation` in degrees, the object's own when left out."""
+    frame of the room edited (its layout's); `rotation` in degrees, the object's own when left out. In an apartment,
+    `to_room` (a room number) carries the object into that room, `x`, `z` then in its frame (models.scene.carry)."""
 
     kind: Literal["move"] = "move"
     object: str = Field(min_length=1, max_length=200, examples=["fridge-0"])
     x: float
     z: float
     rotation: float | None = None
+    to_room: int | None = Field(None, ge=1)
 
 
 class Constraints(BaseModel):
@@ -93,20 +96,47 @@ def generated_seed(scene: Scene) -> int:
 
 def apply_edits(pipeline: Pipeline, value: Scene | Apartment, edits: list[EditStep], room: int | None = None,
                 seed: int | None = None, solver: str | None = None) -> Edited:
-    """`edits` in order on the scene or on room `room` of the apartment; `seed`: the one it was generated with if
-    left out. Raises EditError naming the edit that does not fit; nothing is changed then."""
+    """`edits` in order on the scene or on room `room` of the apartment (a carried object leaves it); `seed`: the one
+    it was generated with if left out. Raises EditError naming the edit that does not fit; nothing is changed then."""
     gen = room_of(value, room)
     seed = generated_seed(gen.scene) if seed is None else seed
-    where = room_label(value, room - 1) if isinstance(value, Apartment) else f"scene {value.id}"
     before, log = gen, []
     for i, edit in enumerate(edits):
-        gen, row = _apply(pipeline, gen, edit, seed, solver, ("edits", i), where)
+        where = room_label(value, room - 1) if isinstance(value, Apartment) else f"scene {value.id}"
+        if isinstance(edit, Move) and edit.to_room is not None:
+            if isinstance(value, Scene):
+                raise EditError(("edits", i, "to_room"), f"scene {value.id} is a single room: leave to_room out")
+            house = with_room(value, room - 1, gen.plan, gen.layout, seed)  # the edits so far, then the carry
+            value, row = _carry(house, room, edit, seed, ("edits", i), where)
+            gen = room_generation(value, room - 1)
+        else:
+            gen, row = _apply(pipeline, gen, edit, seed, solver, ("edits", i), where)
         log.append(row)
     if isinstance(value, Scene):
         found, _ = run_checks(gen.plan, gen.layout, gen.scene, scene_metrics(before.plan, before.layout))
         return Edited(gen.scene, gen, log, found)
     house = with_room(value, room - 1, gen.plan, gen.layout, seed)
     return Edited(house, gen, log, apartment_findings(house))
+
+
+def _carry(house: Apartment, room: int, edit: Move, seed: int, loc: tuple, where: str) -> tuple[Apartment, Edit]:
+    """A move that carries an object of room `room` into room `edit.to_room` (its frame)."""
+    if not 1 <= edit.to_room <= len(house.plans) or edit.to_room == room:
+        raise EditError((*loc, "to_room"), f"apartment {house.id} has rooms 1-{len(house.plans)}: carry "
+                                           f"{edit.object} to one other than room {room}, not {edit.to_room}")
+    placed = house.layouts[room - 1].placement(edit.object)
+    if placed is None:
+        raise EditError((*loc, "object"), f"{edit.object} is not a placed object of {where}")
+    to = edit.to_room - 1
+    dest = house.plans[to].room
+    if not (0 <= edit.x <= dest.width and 0 <= edit.z <= dest.depth):
+        raise EditError(loc, f"({edit.x}, {edit.z}) is outside the {dest.width} x {dest.depth} m room of "
+                             f"{room_label(house, to)} (x, z are in that room's own frame)")
+    rotation = placed.rotation if edit.rotation is None else edit.rotation
+    carried, new_id = carry(house, edit.object, to, edit.x, edit.z, rotation, seed)
+    return carried, Edit("carry", edit.object, {"room": room, "pose": [placed.x, placed.z, placed.rotation]},
+                         {"room": edit.to_room, "id": new_id, "pose": [round(edit.x, 3), round(edit.z, 3),
+                                                                      rotation % 360]})
 
 
 def _apply(pipeline: Pipeline, gen: Generation, edit: EditStep, seed: int, solver: str | None, loc: tuple,

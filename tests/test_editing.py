@@ -9,9 +9,10 @@ from fastapi.testclient import TestClient
 
 from app.api import create_app
 from app.cli import main
-from app.pipeline import Pipeline, generation_of, room_generation, write_apartment, write_generation
+from app.pipeline import Pipeline, generation_of, pose_of, room_generation, write_apartment, write_generation
 from models.exports.apartment import apartment_house
 from models.scene.apartment import house_objects, with_room
+from models.scene.carry import carry
 from models.values import Scene
 from models.values.apartment import Apartment
 from studio_db import Store
@@ -195,3 +196,54 @@ def test_the_cli_edits_an_apartment_room_and_a_folder_without_a_scene_is_refused
     capsys.readouterr()
     assert main(["edit", str(tmp_path), "--move", "a", "1", "1"]) == 2
     assert "holds no scene.json or apartment.json" in capsys.readouterr().err
+
+
+def test_an_apartment_object_is_carried_into_another_room_after_the_edits_before_it(api, flat):
+    pipeline, kitchen = Pipeline(solver=SOLVER), room_generation(flat, 0)
+    fridge = next(p for p in kitchen.layout.placements if p.type == "Fridge")
+    table = next(o for o in kitchen.plan.objects if o.holds)
+    r = edit(api, flat, [{"kind": "move", "object": fridge.id, "x": 1.0, "z": 1.0},
+                         {"kind": "move", "object": table.id, "x": 2.0, "z": 2.5, "to_room": 2}], room=1)
+    assert r.status_code == 200, r.text
+    moved = with_room(flat, 0, kitchen.plan, pipeline.move(kitchen, fridge.id, 1.0, 1.0, fridge.rotation, SEED).layout,
+                      SEED)
+    want, new_id = carry(moved, table.id, 1, 2.0, 2.5, next(p for p in kitchen.layout.placements
+                                                             if p.id == table.id).rotation, SEED)
+    assert Apartment.model_validate(r.json()["apartment"]) == want and new_id.startswith("r2-")
+    assert r.json()["edits"][1] == {"kind": "carry", "target": table.id,
+                                    "before": {"room": 1, "pose": list(pose_of(kitchen.layout.placement(table.id)))},
+                                    "after": {"room": 2, "id": new_id, "pose": [2.0, 2.5, want.layouts[1].placement(
+                                        new_id).rotation]}}
+
+
+@pytest.mark.parametrize("move,field,words", [
+    ({"to_room": 1}, ["edits", 0, "to_room"], "other than room 1"),
+    ({"to_room": 5}, ["edits", 0, "to_room"], "not 5"),
+    ({"to_room": 2, "x": 40}, ["edits", 0], "outside"),
+])
+def test_a_carry_that_does_not_fit_is_a_422_naming_it(api, flat, move, field, words):
+    table = next(o for o in flat.plans[0].objects if o.holds)
+    r = edit(api, flat, [{"kind": "move", "object": table.id, "x": 1.0, "z": 1.0, **move}], room=1)
+    assert r.status_code == 422
+    d = r.json()["detail"][0]
+    assert d["loc"][1:] == field and words in d["msg"], d
+
+
+def test_a_single_room_has_no_room_to_carry_to(api, kitchen):
+    r = edit(api, kitchen, [{"kind": "move", "object": "fridge-0", "x": 1.0, "z": 1.0, "to_room": 2}])
+    assert r.status_code == 422 and "single room" in r.json()["detail"][0]["msg"]
+
+
+def test_the_cli_carries_an_object_into_another_room(flat, tmp_path, capsys):
+    folder = tmp_path / "flat"
+    write_apartment(flat, folder)
+    table = next(o for o in flat.plans[0].objects if o.holds)
+    assert main(["edit", str(folder), "--room", "1", "--move", table.id, "2.0", "2.5", "--to-room", "2"]) == 0
+    edited = Apartment.model_validate_json((folder / "apartment.json").read_text())
+    new_id = "r2-" + table.id.split("-", 1)[1]
+    assert any(p["id"] == new_id for p in json.loads(next(folder.glob("rooms/2-*/layout.json")).read_text())[
+        "placements"])
+    assert edited.plan.assignment["Bread"] == "room|2"
+    capsys.readouterr()
+    assert main(["edit", str(folder), "--room", "1", "--replace-around", "r1-fridge-0", "--to-room", "2"]) == 2
+    assert "--to-room goes with --move" in capsys.readouterr().err

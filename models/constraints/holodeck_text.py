@@ -99,3 +99,17 @@ def read_constraints(text: str, object_ids: list[str],
 def write_constraints(constraints: ConstraintSet | list[ObjectConstraints]) -> str:
     items = constraints.objects.values() if isinstance(constraints, ConstraintSet) else constraints
     return "\n".join(" | ".join([oc.object_id, oc.placement, *(c.text() for c in oc.relations)]) for oc in items)
+
+
+def without_object(text: str, object_id: str) -> str:
+    """The text with `object_id`'s own line taken out and every constraint that targets it dropped from the other
+    lines (the object left the room); the rest kept as written."""
+    lines = []
+    for line in (text or "").splitlines():
+        fields = [f.strip() for f in line.split("|")]
+        if fields[0] == object_id:
+            continue
+        if any(f.partition(",")[2].strip() == object_id for f in fields[1:]):
+            line = " | ".join([fields[0], *(f for f in fields[1:] if f.partition(",")[2].strip() != object_id)])
+        lines.append(line)
+    return "\n".join(lines)
