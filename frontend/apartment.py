@@ -20,7 +20,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from app.pipeline import Generation, room_generation
+from app.pipeline import Generation, pose_of, room_generation
 from frontend.captions import parser_note
 from frontend.state import Values
 from models.checks import Finding, apartment_findings, room_label
@@ -29,8 +29,10 @@ from models.placement import PlacementStep
 from models.planning.apartment_planner import ApartmentError, parse_rooms
 from models.planning.floorplan import FloorplanError
 from models.scene.apartment import house_objects, with_room
+from models.scene.carry import carry
 from models.values import Room, Scene, TaskGraph
 from models.values.apartment import Apartment
+from studio_db.store import Edit
 
 PATH_COLOUR = (200, 40, 160)
 
@@ -178,6 +180,35 @@ class ApartmentMode:
         others = [step for step in old if self.room_of(step.object_id) != room]
         spliced = (*others[:first], *self._in_house(apartment, steps), *others[first:])
         return room_now, spliced, apartment
+
+    def room_at(self, x: float, z: float) -> int | None:
+        """The room whose floor holds the house-frame point (x, z) (the room edited where two meet; None: no room)."""
+        rooms, k = self.current.floorplan.rooms, self.session.state.values.room
+        return next((i for i in (k, *range(len(rooms))) if rooms[i].x <= x <= rooms[i].x + rooms[i].room.width
+                     and rooms[i].z <= z <= rooms[i].z + rooms[i].room.depth), None)
+
+    def carry(self, object_id: str, to: int, x: float, z: float, rotation: float) -> str:
+        """A designer's move that lands (house frame) in room `to`: the object and what stands on it go there
+        (models.scene.carry), that room becomes the one edited, and its placer steps leave the animation; undoable,
+        stored as a `carry` edit. Returns the object's new id."""
+        s = self.session
+        k, before = s.state.values.room, s.state.gen.layout.placement(object_id)
+        hr = self.current.floorplan.rooms[to]
+        with s.lock:
+            apartment, new_id = carry(self.current, object_id, to, x - hr.x, z - hr.z, rotation, s.state.seed)
+            s.history.record(f"carry {object_id}", s.state.values)
+            put = pose_of(apartment.layouts[to].placement(new_id))
+            edit = Edit("carry", object_id, {"room": k + 1, "pose": list(pose_of(before))},
+                        {"room": to + 1, "id": new_id, "pose": list(put)})
+            steps = tuple(step for step in s.state.steps if step.object_id != object_id)
+            shown = len(steps) if s.state.shown >= len(s.state.steps) else min(s.state.shown, len(steps))
+            moved = tuple(m for m in s.state.values.moved if m[0] != object_id) + ((new_id, put),)
+            s.state.values = replace(s.state.values, gen=room_generation(apartment, to, s.state.gen.task_graph),
+                                     steps=steps, edits=s.state.edits + (edit,), moved=moved, reference=None,
+                                     apartment=apartment, room=to)
+            s.state.shown = shown
+        threading.Thread(target=self.energy_curve, args=(lambda: self.current is apartment,), daemon=True).start()
+        return new_id
 
     def findings(self) -> list[Finding]:
         return apartment_findings(self.current)

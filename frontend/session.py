@@ -492,6 +492,8 @@ class StudioSession:
     def move_to(self, object_id: str, x: float, z: float, rotation: float, how: str) -> None:
         """A designer's move (drag, typed pose or turn; `x`, `z` in the room's frame): undoable, stored as an
         edit, checked at once."""
+        if self.apartment.current is not None and self._carried(object_id, x, z, rotation, how):
+            return
         with self.lock:
             gen = self.state.gen
             before = gen.layout.placement(object_id)
@@ -519,6 +521,24 @@ class StudioSession:
         self.say(f"Moved `{object_id}` to ({obj.x:.2f}, {obj.z:.2f}) facing {rotation % 360:.0f}° ({how}). "
                  + (f"⚠ {len(findings)} check(s) fail." if findings else "All checks pass.")
                  + f" {len(self.state.edits)} designer edit(s); **Undo** reverts.")
+
+    def _carried(self, object_id: str, x: float, z: float, rotation: float, how: str) -> bool:
+        """In an apartment, a move that lands in another room carries the object there (ApartmentMode.carry)."""
+        dx, dz = self._offset()
+        to = self.apartment.room_at(x + dx, z + dz)
+        if to is None or to == self.state.values.room:
+            return False
+        new_id = self.apartment.carry(object_id, to, x + dx, z + dz, rotation)
+        self.redraw()  # the ids changed
+        self.pick(new_id)
+        self.constraints.update()
+        findings = self.refresh_checks()
+        self.graph_md.content = self.apartment.summary()
+        self.set_unsaved(True)
+        self.say(f"Carried `{object_id}` into {self.apartment.label()} as `{new_id}` ({how}). "
+                 + (f"⚠ {len(findings)} check(s) fail." if findings else "All checks pass.")
+                 + f" {len(self.state.edits)} designer edit(s); **Undo** reverts.")
+        return True
 
     def still_moved(self) -> list[str]:
         """The objects the designer moved that are still where they were put (a re-plan may have moved them)."""

@@ -252,3 +252,41 @@ def test_editing_a_room_of_an_apartment(browser, studio):  # noqa: F811
     kinds = [e["kind"] for e in studio.store.edits(scene_id)]
     assert kinds[:7] == ["constraints", "move", "move", "re-place", "undo", "task-graph", "undo"]
     assert set(kinds[7:]) <= {"override"}
+
+
+def test_an_object_put_into_another_room_is_carried_there(browser, studio):  # noqa: F811
+    page, session = _three_rooms(browser, studio)
+    dismiss_notices(page)
+    first = session.apartment.current
+    wait_until(page, lambda: len(session.placement.energy_plot.data[0]) == len(session.state.steps),
+               "the energy plot of the apartment's steps")
+    table = next(o for o in first.plans[0].objects if o.holds)  # what the bread stands on, in the kitchen
+    session.pick(table.id)
+    living = first.floorplan.rooms[1]
+    x, z = round(living.x + living.room.width / 2, 2), round(living.z + living.room.depth / 2, 2)
+    enter(page, "x (m)", x, session.pose_x)
+    enter(page, "z (m)", z, session.pose_z)
+    page.get_by_role("button", name="Apply pose").click()
+    page.get_by_text(re.compile(rf"Carried {table.id} into room 2 \(living room\) as r2-")).wait_for(timeout=WAIT)
+
+    carried = session.apartment.current
+    new_id = session.selected
+    assert new_id.startswith("r2-") and session.state.values.room == 1 and session.state.gen.plan == carried.plans[1]
+    put = carried.layouts[1].placement(new_id)
+    assert (put.x, put.z) == pytest.approx((x - living.x, z - living.z), abs=1e-3)
+    assert table.id not in {o.id for p in carried.plans for o in p.objects}
+    assert carried.plan.assignment["Bread"] == living.id and new_id in carried.path.visits
+    assert table.id not in session.view.objects and np.allclose(session.view.objects[new_id].position[::2],
+                                                                world(x, 0, z)[::2], atol=1e-3)
+    assert table.id not in {s.object_id for s in session.state.steps}
+    rooms = [(plan, layout.placements) for plan, layout in zip(carried.plans, carried.layouts)]
+    placed = [s for s in _placed(studio, session) if s.object_id != table.id]
+    total = [round(r["total"], 4) for r in energy_after_steps(rooms, placed, ApartmentMode.room_of)]
+    wait_until(page, lambda: list(session.placement.energy_plot.data[-1]) == total, "the energy plot after the carry")
+    edit = session.state.edits[-1]
+    assert (edit.kind, edit.target, edit.after["room"], edit.after["id"]) == ("carry", table.id, 2, new_id)
+
+    page.get_by_role("button", name="Undo").click()
+    page.get_by_text(f"Undid: carry {table.id}.").wait_for(timeout=WAIT)
+    assert session.apartment.current is first and session.state.values.room == 0
+    assert table.id in session.view.objects and new_id not in session.view.objects
