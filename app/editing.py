@@ -13,12 +13,12 @@ from typing import Annotated, Literal
 
 from pydantic import BaseModel, Field
 
-from app.pipeline import Generation, Pipeline, generation_of, room_generation
+from app.pipeline import Generation, Pipeline, generation_of, pose_of, room_generation
 from models.checks import Finding, apartment_findings, room_label, run_checks
 from models.metrics import scene_metrics
 from models.scene.apartment import with_room
 from models.scene.carry import carry
-from models.values import Scene
+from models.values import Placement, Scene
 from models.values.apartment import Apartment
 from studio_db.store import Edit
 
@@ -134,9 +134,18 @@ def _carry(house: Apartment, room: int, edit: Move, seed: int, loc: tuple, where
                              f"{room_label(house, to)} (x, z are in that room's own frame)")
     rotation = placed.rotation if edit.rotation is None else edit.rotation
     carried, new_id = carry(house, edit.object, to, edit.x, edit.z, rotation, seed)
-    return carried, Edit("carry", edit.object, {"room": room, "pose": [placed.x, placed.z, placed.rotation]},
-                         {"room": edit.to_room, "id": new_id, "pose": [round(edit.x, 3), round(edit.z, 3),
-                                                                      rotation % 360]})
+    return carried, carry_row(edit.object, room, placed, new_id, edit.to_room, carried.layouts[to].placement(new_id))
+
+
+def move_row(object_id: str, before: Placement, x: float, z: float, rotation: float) -> Edit:
+    """The edit log's row of a move (room frame), as the studio and the API store it."""
+    return Edit("move", object_id, [before.x, before.z, before.rotation], [round(x, 3), round(z, 3), rotation % 360])
+
+
+def carry_row(object_id: str, room: int, before: Placement, new_id: str, to_room: int, after: Placement) -> Edit:
+    """The edit log's row of a carry: rooms numbered from 1, each pose in its room's frame."""
+    return Edit("carry", object_id, {"room": room, "pose": list(pose_of(before))},
+                {"room": to_room, "id": new_id, "pose": list(pose_of(after))})
 
 
 def _apply(pipeline: Pipeline, gen: Generation, edit: EditStep, seed: int, solver: str | None, loc: tuple,
@@ -154,8 +163,7 @@ def _apply(pipeline: Pipeline, gen: Generation, edit: EditStep, seed: int, solve
                                  "room's own frame)")
         rotation = p.rotation if edit.rotation is None else edit.rotation
         moved = pipeline.move(gen, edit.object, edit.x, edit.z, rotation, seed)
-        return moved, Edit("move", edit.object, [p.x, p.z, p.rotation],
-                           [round(edit.x, 3), round(edit.z, 3), rotation % 360])
+        return moved, move_row(edit.object, p, edit.x, edit.z, rotation)
     if isinstance(edit, Constraints):
         return pipeline.replan(gen, edit.text, seed, solver), Edit("constraints", "plan", gen.plan.constraints,
                                                                     edit.text)

@@ -20,6 +20,7 @@ from dataclasses import replace
 
 import numpy as np
 
+from app.editing import carry_row
 from app.pipeline import Generation, pose_of, room_generation
 from frontend.captions import parser_note
 from frontend.state import Values
@@ -32,7 +33,6 @@ from models.scene.apartment import house_objects, with_room
 from models.scene.carry import carry
 from models.values import Room, Scene, TaskGraph
 from models.values.apartment import Apartment
-from studio_db.store import Edit
 
 PATH_COLOUR = (200, 40, 160)
 
@@ -197,12 +197,11 @@ class ApartmentMode:
         with s.lock:
             apartment, new_id = carry(self.current, object_id, to, x - hr.x, z - hr.z, rotation, s.state.seed)
             s.history.record(f"carry {object_id}", s.state.values)
-            put = pose_of(apartment.layouts[to].placement(new_id))
-            edit = Edit("carry", object_id, {"room": k + 1, "pose": list(pose_of(before))},
-                        {"room": to + 1, "id": new_id, "pose": list(put)})
+            put = apartment.layouts[to].placement(new_id)
+            edit = carry_row(object_id, k + 1, before, new_id, to + 1, put)
             steps = tuple(step for step in s.state.steps if step.object_id != object_id)
             shown = len(steps) if s.state.shown >= len(s.state.steps) else min(s.state.shown, len(steps))
-            moved = tuple(m for m in s.state.values.moved if m[0] != object_id) + ((new_id, put),)
+            moved = tuple(m for m in s.state.values.moved if m[0] != object_id) + ((new_id, pose_of(put)),)
             s.state.values = replace(s.state.values, gen=room_generation(apartment, to, s.state.gen.task_graph),
                                      steps=steps, edits=s.state.edits + (edit,), moved=moved, reference=None,
                                      apartment=apartment, room=to)

@@ -20,6 +20,7 @@ import numpy as np
 import viser
 from viser import _messages
 
+from app.editing import move_row
 from app.pipeline import Generation, Pipeline, pose_of
 from frontend import camera
 from frontend.apartment import ApartmentMode
@@ -502,8 +503,7 @@ class StudioSession:
             if apartment is not None:
                 new, _, apartment = self.apartment.fold(new, None)
             self.history.record(f"move {object_id}", self.state.values)
-            edit = Edit("move", object_id, [before.x, before.z, before.rotation],
-                        [round(x, 3), round(z, 3), rotation % 360])
+            edit = move_row(object_id, before, x, z, rotation)
             put = new.layout.placement(object_id)
             moved = tuple(m for m in self.state.values.moved if m[0] != object_id) + ((object_id, pose_of(put)),)
             self.state.values = replace(self.state.values, gen=new, edits=self.state.edits + (edit,), moved=moved,
