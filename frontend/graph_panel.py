@@ -33,7 +33,9 @@ class GraphPanel:
     def _edit(self, objects: list[TaskObject], note: str) -> None:
         s = self.session
         gen = s.state.gen
-        graph = gen.task_graph.model_copy(update={"objects": objects})
+        kept = {o.type for o in objects}  # a relation naming a removed object goes with it
+        graph = gen.task_graph.model_copy(update={"objects": objects, "relations": [
+            r for r in gen.task_graph.relations if r[0] in kept and r[2] in kept]})
         edit = Edit("task-graph", note, [o.model_dump() for o in gen.task_graph.objects],
                     [o.model_dump() for o in objects])
         s.history.record(f"task graph {note}", s.state.values)
@@ -80,9 +82,6 @@ class GraphPanel:
             if not free:
                 return
             graph = gen.task_graph
-            keep = {o.type for o in graph.objects}
-            relations = [r for r in graph.relations if r[0] in keep and r[2] in keep]
-            graph = graph.model_copy(update={"relations": relations})
             if s.apartment.current is not None:
                 s.apartment.regenerate(graph)
                 return

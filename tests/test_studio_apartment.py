@@ -18,6 +18,7 @@ pytest.importorskip("playwright")
 from app.pipeline import room_generation  # noqa: E402
 from frontend.apartment import ApartmentMode, first_room  # noqa: E402
 from frontend.camera import PANEL_PX, room_points  # noqa: E402
+from frontend.graph_image import render as render_graph  # noqa: E402
 from frontend.replay import energy_after_steps, room_at  # noqa: E402
 from frontend.view import world  # noqa: E402
 
@@ -230,6 +231,9 @@ def test_editing_a_room_of_an_apartment(browser, studio):  # noqa: F811
     choose(page, "Object", "Fridge", session.graph.object)
     page.get_by_role("button", name="Remove object").click()
     page.get_by_text(re.compile(r"Task graph edited \(-Fridge\).*rebuild the apartment")).wait_for(timeout=WAIT)
+    corrected = session.state.gen.task_graph  # the fridge's relation goes with it: the graph's picture draws it
+    assert corrected.relations and all("Fridge" not in (r[0], r[2]) for r in corrected.relations)
+    assert render_graph(corrected).shape[2] == 3
     page.get_by_role("button", name="Regenerate from graph").click()
     page.get_by_text(re.compile("Apartment regenerated from the corrected graph")).wait_for(timeout=WAIT)
     again = session.apartment.current
