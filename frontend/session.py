@@ -472,6 +472,10 @@ class StudioSession:
             return
         now = time.perf_counter()  # while dragging: the object follows, the checks re-run (throttled)
         self.view.move(self._on_screen(self.selected).model_copy(update={"x": float(x), "z": float(-neg_z)}))
+        if self.apartment.current is not None and (to := self.apartment.room_at(float(x), float(-neg_z))) not in (
+                None, self.state.values.room):
+            self.checks_md.content = f"**Release to carry `{self.selected}` into {self.apartment.label(to)}.**"
+            return
         if now - self._last_live < LIVE_RESCORE_S:
             return
         self._last_live = now

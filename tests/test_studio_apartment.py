@@ -294,3 +294,38 @@ def test_an_object_put_into_another_room_is_carried_there(browser, studio):  # n
     page.get_by_text(f"Undid: carry {table.id}.").wait_for(timeout=WAIT)
     assert session.apartment.current is first and session.state.values.room == 0
     assert table.id in session.view.objects and new_id not in session.view.objects
+
+
+def test_a_drag_through_the_wall_says_it_will_carry_and_carries_on_release(browser, studio):  # noqa: F811
+    page, session = _three_rooms(browser, studio)
+    dismiss_notices(page)
+    first = session.apartment.current
+
+    def beyond(o) -> float:  # metres along x (house frame) to the nearest other room's floor, 0: none within 1.5 m
+        for d in np.arange(0.1, 1.5, 0.05):
+            for shift in (d, -d):
+                if session.apartment.room_at(o.x + shift, o.z) not in (None, 0):
+                    return float(shift + 0.3 * np.sign(shift))
+        return 0.0
+    shown = [o for o in session.displayed().objects if o.id.startswith("r1-") and beyond(o)]
+    obj = min(shown, key=lambda o: abs(beyond(o)))
+    shift = beyond(obj)
+    to = session.apartment.room_at(obj.x + shift, obj.z)
+    page.get_by_role("button", name="Top view").click()
+    wait_until(page, lambda: session.state.view == "top", "the top view")
+    settle(page, 6)
+    session.pick(obj.id)
+    settle(page, 4)
+    top = np.asarray(session.controls.position)
+    arrow = 0.5 * session.controls.scale  # the x arrow points along +x: grabbed there, dragged either way
+    page.mouse.move(*screen_xy(session, top + (arrow, 0, 0)))
+    page.mouse.down()
+    page.mouse.move(*screen_xy(session, top + (arrow + shift, 0, 0)), steps=20)
+    label = session.apartment.label(to)
+    wait_until(page, lambda: "Release to carry" in session.checks_md.content, "the carry announced while dragging")
+    assert label in session.checks_md.content and session.apartment.current is first  # nothing carried yet
+    page.mouse.up()
+    page.get_by_text(re.compile(rf"Carried {obj.id} into {re.escape(label)} as r{to + 1}-")).wait_for(timeout=WAIT)
+    carried = session.apartment.current
+    assert obj.id not in {o.id for p in carried.plans for o in p.objects}
+    assert session.state.values.room == to and session.selected in {o.id for o in carried.plans[to].objects}
