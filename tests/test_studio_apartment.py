@@ -2,7 +2,8 @@
 animation room by room, accept & save as versions, downloads by version; a single room afterwards leaves
 the apartment mode, and reopening the stored apartment shows the whole house again. A room of the apartment
 is edited like a single room (a click picks the room; constraint text, typed pose, re-place the rest, undo),
-each edit folded back into the house; a task-graph correction regenerates the whole apartment."""
+each edit folded back into the house; a task-graph correction regenerates the whole apartment; an object typed
+or dragged onto another room's floor is carried there."""
 
 import json
 import re
