@@ -295,6 +295,27 @@ def test_an_object_put_into_another_room_is_carried_there(browser, studio):  # n
     page.get_by_text(f"Undid: carry {table.id}.").wait_for(timeout=WAIT)
     assert session.apartment.current is first and session.state.values.room == 0
     assert table.id in session.view.objects and new_id not in session.view.objects
+    page.get_by_role("button", name="Redo").click()
+    page.get_by_text(f"Redid: carry {table.id}.").wait_for(timeout=WAIT)
+    assert session.apartment.current is carried and new_id in session.view.objects
+
+    # the room it went to is edited like any other: re-placed around it, then saved with the carry in the log
+    session.pick(new_id)  # (undo left it unpicked: it was not there)
+    page.get_by_role("button", name="Re-place the rest").click()
+    page.get_by_text(re.compile(rf"Re-placed around {new_id}")).wait_for(timeout=WAIT)
+    around = session.apartment.current
+    assert around.layouts[1].placement(new_id) == put and around.layouts[0] == carried.layouts[0]
+    page.get_by_role("tab", name="Scenes").click()
+    enter(page, "Name", "carried table", session.scenes.save_name)
+    page.get_by_role("button", name="Accept & save").click()
+    if session.apartment.findings():
+        page.get_by_role("button", name="Save anyway").click()
+    saved = page.get_by_text(re.compile(r"Saved as scene \d+, version 1"))
+    saved.wait_for(timeout=WAIT)
+    scene_id = int(re.search(r"scene (\d+)", saved.inner_text()).group(1))
+    assert studio.store.scene(scene_id, 1) == around
+    kinds = [e["kind"] for e in studio.store.edits(scene_id)]
+    assert kinds[:4] == ["carry", "undo", "redo", "re-place"] and set(kinds[4:]) <= {"override"}
 
 
 def test_a_drag_through_the_wall_says_it_will_carry_and_carries_on_release(browser, studio):  # noqa: F811
