@@ -13,6 +13,8 @@ from pathlib import Path
 
 from pydantic import ValidationError
 
+from app.cli_input import BadInput, Parser, load_value, value_error
+from app.cli_scenes import add_scene_commands
 from models.errors import InputError
 from models.language.combined import DEFAULT_POLICY, POLICIES, make_parser
 from models.placement import DEFAULT_SOLVER, SOLVERS
@@ -27,55 +29,23 @@ EXAMPLES = """examples:
   h3ds place out/bread/plan.json --solver dfs --seed 3 --out layout.json
   h3ds edit out/bread --move fridge-0 0.5 3.0 90
   h3ds edit out/flat --room 2 --replace-around r2-sofa-0
+  h3ds scenes store out/bread --name "bread, fridge moved"
 """
-
-
-class BadInput(Exception):
-    """Input the user can fix; shown as one line, exit status 2."""
-
-
-class Parser(argparse.ArgumentParser):
-    def error(self, message: str):  # one line instead of argparse's usage block
-        raise BadInput(message)
 
 SOLVER_HELP = f"placer: {DEFAULT_SOLVER} (default); one of {', '.join(sorted(SOLVERS))} (listed below)"
 SOLVER_LIST = "solvers:\n" + "\n".join(f"  {name:24s}{line}" for name, line in summaries().items())
 
 
-def _value_error(path: str, err: ValidationError, what: str) -> BadInput:
-    first = err.errors()[0]
-    where = ".".join(str(p) for p in first["loc"]) or what
-    return BadInput(f"{path}: {where}: {first['msg']}")
-
-
-def _load_value(path: str, model, what: str):
-    """A JSON file read into `model` (a pydantic value type); each problem is a BadInput naming the file."""
-    try:
-        raw = Path(path).read_bytes()
-    except OSError as e:
-        raise BadInput(f"{path}: cannot read the {what} ({e.strerror})") from e
-    try:
-        data = json.loads(raw.decode("utf-8"))
-    except (UnicodeDecodeError, json.JSONDecodeError) as e:
-        raise BadInput(f"{path}: not valid JSON ({e})") from e
-    if not isinstance(data, dict):
-        raise BadInput(f"{path}: a {what} must be a JSON object, not {type(data).__name__}")
-    try:
-        return model.model_validate(data)
-    except ValidationError as e:
-        raise _value_error(path, e, what) from e
-
-
 def load_plan(path: str):
     from models.values import ConstraintPlan
-    return _load_value(path, ConstraintPlan, "plan")
+    return load_value(path, ConstraintPlan, "plan")
 
 
 def load_kept(path: str, plan) -> dict[str, tuple[float, float, float]]:
     """The poses of a layout file's placements, to keep when placing `plan` (`h3ds place --keep`)."""
     from app.pipeline import outside, pose_of, strangers
     from models.values import Layout
-    keep = {p.id: pose_of(p) for p in _load_value(path, Layout, "layout").placements}
+    keep = {p.id: pose_of(p) for p in load_value(path, Layout, "layout").placements}
     if unknown := strangers(plan, keep):
         raise BadInput(f"{path}: not objects of plan {plan.id}: {', '.join(unknown)}")
     if far := outside(plan, keep):
@@ -184,79 +154,6 @@ def _generate_apartment(args) -> int:
     for u in apartment.unplaced:
         print(f"note: {u.id} could not be placed: {u.reason}", file=sys.stderr)
     return 0
-
-
-def cmd_edit(args) -> int:
-    """The studio's edits on a folder of `h3ds generate`: the files written again (to --out, or in place) and the
-    edit appended to edits.jsonl; the checks that fail after it are printed, as the studio shows them."""
-    from app.editing import EditError, apply_edits
-    from app.pipeline import Pipeline, write_apartment, write_generation
-    folder = Path(args.dir)
-    value = _generated(folder)
-    try:
-        done = apply_edits(Pipeline(), value, [_edit_step(args)], args.room, args.seed, args.solver)
-    except EditError as e:
-        option = {"room": "--room", "scene": str(folder / "scene.json")}.get(e.loc[0], _action(args))
-        option = "--to-room" if e.loc[-1] == "to_room" else option
-        raise BadInput(f"{option}: {e}") from e
-    out = Path(args.out) if args.out else folder
-    paths = write_generation(done.room, out) if done.value is done.room.scene else write_apartment(done.value, out)
-    log, earlier = out / EDIT_LOG, folder / EDIT_LOG
-    if out != folder and earlier.exists():
-        log.write_text(earlier.read_text())
-    with log.open("a") as f:
-        for row in done.log:
-            f.write(json.dumps({"kind": row.kind, "target": row.target, "before": row.before, "after": row.after})
-                    + "\n")
-    for p in [*paths, log]:
-        print(p)
-    for finding in done.findings:
-        print(f"check: {finding.text.replace('`', '')}", file=sys.stderr)
-    return 0
-
-
-EDIT_LOG = "edits.jsonl"  # `h3ds edit`'s log in the folder, one row per edit as the studio stores them
-
-
-def _generated(folder: Path):
-    """The scene or apartment a folder of `h3ds generate` holds (scene.json or apartment.json)."""
-    from models.values import Scene
-    from models.values.apartment import Apartment
-    for name, model in (("scene.json", Scene), ("apartment.json", Apartment)):
-        if (folder / name).exists():
-            return _load_value(str(folder / name), model, name.removesuffix(".json"))
-    raise BadInput(f"{folder}: holds no scene.json or apartment.json (h3ds generate writes one; a folder written "
-                   "before it did must be generated again)")
-
-
-def _action(args) -> str:
-    return "--move" if args.move else "--constraints" if args.constraints else "--replace-around"
-
-
-def _edit_step(args):
-    """The one edit the options ask for."""
-    from app.editing import Constraints, Move, ReplaceAround
-    if args.move:
-        if len(args.move) not in (3, 4):
-            raise BadInput(f"--move takes ID X Z [ROTATION], not {len(args.move)} value(s)")
-        try:
-            numbers = [float(v) for v in args.move[1:]]
-        except ValueError as e:
-            raise BadInput(f"--move: X, Z and ROTATION are numbers ({e})") from e
-        return Move(object=args.move[0], x=numbers[0], z=numbers[1], rotation=numbers[2] if len(numbers) > 2 else None,
-                    to_room=args.to_room)
-    if args.to_room is not None:
-        raise BadInput("--to-room goes with --move")
-    if args.constraints:
-        try:
-            text = sys.stdin.read() if args.constraints == "-" else Path(args.constraints).read_text()
-        except (OSError, UnicodeDecodeError) as e:
-            raise BadInput(f"--constraints: cannot read {args.constraints} ({e})") from e
-        return Constraints(text=text.strip("\n"))
-    ids = [i.strip() for i in args.replace_around.split(",") if i.strip()]
-    if not ids:
-        raise BadInput("--replace-around: name at least one object id")
-    return ReplaceAround(objects=ids)
 
 
 def cmd_demo(args) -> int:
@@ -480,25 +377,7 @@ def build_parser() -> argparse.ArgumentParser:
     _parser_options(p)
     p.set_defaults(run=cmd_generate)
 
-    p = sub.add_parser("edit", help="the studio's edits on a folder of h3ds generate: move an object, edit the "
-                       "constraints, re-place around objects", epilog=SOLVER_LIST,
-                       formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("dir", metavar="DIR", help="a folder written by h3ds generate (its scene.json or apartment.json)")
-    what = p.add_mutually_exclusive_group(required=True)
-    what.add_argument("--move", nargs="+", metavar="ID X Z [ROTATION]", help="put one object at x, z (metres, in "
-                      "its room's frame, as layout.json) facing ROTATION degrees (default: as it was)")
-    what.add_argument("--constraints", metavar="FILE", help="the room's constraint text edited (Holodeck's lines, "
-                      "as in plan.json; - for stdin): placed again from the first object whose lines changed")
-    what.add_argument("--replace-around", metavar="ID[,ID...]", help="keep these objects where they are and place "
-                      "the others again around them")
-    p.add_argument("--room", type=int, default=None, help="an apartment's room to edit: its number, as in "
-                   "rooms/N-TYPE")
-    p.add_argument("--to-room", type=int, default=None, metavar="N", help="with --move in an apartment: carry the "
-                   "object into room N (X, Z in that room's frame); it takes that room's id prefix (r3-...)")
-    p.add_argument("--seed", type=int, default=None, help="default: the seed the scene was generated with")
-    p.add_argument("--solver", default=None, help=SOLVER_HELP)
-    p.add_argument("--out", metavar="DIR", default=None, help="write the edited scene here (default: DIR itself)")
-    p.set_defaults(run=cmd_edit)
+    add_scene_commands(sub, SOLVER_HELP, SOLVER_LIST)
 
     p = sub.add_parser("studio", help="the browser studio and its HTTP API (prints the URLs)")
     p.add_argument("--host", default="127.0.0.1", help="address to listen on (0.0.0.0 for other machines)")
@@ -654,7 +533,7 @@ def main(argv: list[str] | None = None) -> int:
         print(f"h3ds: error: {e}", file=sys.stderr)
         return 2
     except ValidationError as e:
-        print(f"h3ds: error: {_value_error('input', e, 'input')}", file=sys.stderr)
+        print(f"h3ds: error: {value_error('input', e, 'input')}", file=sys.stderr)
         return 2
     except BrokenPipeError:
         return 0
