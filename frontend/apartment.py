@@ -108,8 +108,8 @@ class ApartmentMode:
                                     s.state.edits if record else (), apartment=apartment, room=k)
             s.state.shown, s.state.playing, s.state.scene_id = len(steps), False, scene_id
             s.state.runs += 1
-            s.selected = None
-        s.picked.visible = False
+            s.picking.selected = None
+        s.picking.picked.visible = False
         s.redraw()
         s.set_view("fit" if s.state.view != "top" else "top")
         s.refresh_panels()

@@ -20,8 +20,7 @@ import numpy as np
 import viser
 from viser import _messages
 
-from app.editing import move_row
-from app.pipeline import Generation, Pipeline, pose_of
+from app.pipeline import Generation, Pipeline
 from frontend import camera
 from frontend.apartment import ApartmentMode
 from frontend.captions import graph_summary, metrics_table, parser_note, placing_progress, unplaced_note
@@ -30,6 +29,7 @@ from frontend.constraints_panel import ConstraintsPanel
 from frontend.graph_image import render as render_graph
 from frontend.graph_panel import GraphPanel
 from frontend.history import History
+from frontend.picking_panel import PickingPanel
 from frontend.placement_panel import PlacementPanel
 from frontend.replay import RoomOf, one_room, room_at
 from frontend.scenes_panel import ScenesPanel
@@ -42,12 +42,11 @@ from models.metrics.realism import checks as habit_checks
 from models.placement import ALL_OBJECTS, DEFAULT_SOLVER, SOLVERS, PlacementStep
 from models.values import Scene, TaskGraph
 from models.values.apartment import APARTMENT
-from models.world import ROOM_TYPES, catalogue
+from models.world import ROOM_TYPES
 from studio_db import Store
 from studio_db.store import Edit
 
 DEFAULT_INSTRUCTION = "Put a chilled bread on the counter"
-LIVE_RESCORE_S = 0.3
 PROGRESS_S = 0.2  # the progress line is updated at most this often while placing
 UNSAVED_JS = """
 if (!window.__h3dsUnsavedHook) {
@@ -66,11 +65,8 @@ class StudioSession:
         self.history = History()
         self.lock = threading.RLock()
         self.view = SceneView(client.scene)
-        self.view.on_pick = self.pick
+        self.view.on_pick = lambda object_id: self.picking.pick(object_id)
         self.apartment = ApartmentMode(self)
-        self.controls = None
-        self.selected: str | None = None
-        self._last_live = 0.0
         self.closed = False  # the tab has gone: nothing more is drawn
         self._run_js(camera.ORBIT_LIMIT_JS + UNSAVED_JS)
         self._build_gui()
@@ -96,18 +92,7 @@ class StudioSession:
         edits = gui.add_button_group("Edits", ("Undo", "Redo"))
         edits.on_click(lambda e: self.undo() if e.target.value == "Undo" else self.redo())
         self.checks_md = gui.add_markdown("")
-        self.picked = gui.add_folder("Picked object", visible=False)
-        with self.picked:
-            self.picked_md = gui.add_markdown("")
-            self.pose_x = gui.add_number("x (m)", 0.0, step=0.05)
-            self.pose_z = gui.add_number("z (m)", 0.0, step=0.05)
-            self.pose_rot = gui.add_number("Rotation (°)", 0.0, step=90)
-            gui.add_button("Apply pose").on_click(lambda _: self.apply_pose())
-            gui.add_button("Re-place the rest", hint="Keep the objects you moved where you put them and place "
-                           "the others again around them").on_click(lambda _: self.replace_rest())
-            turns = gui.add_button_group("Turn", ("-90°", "+90°", "Deselect"))
-            turns.on_click(lambda e: self.pick(None) if e.target.value == "Deselect"
-                           else self.turn(90 if e.target.value == "+90°" else -90))
+        self.picking = PickingPanel(self, gui)
         tabs = gui.add_tab_group()
 
         with tabs.add_tab("Task"):
@@ -251,8 +236,8 @@ class StudioSession:
             self.state.shown = len(steps)
             self.state.runs += 1
         self.redraw(labels=False)
-        if self.selected is not None:
-            self.pick(self.selected)  # its panel shows the new scene's object, or closes if it is gone
+        if self.picking.selected is not None:
+            self.picking.pick(self.picking.selected)  # its panel shows the new scene's object, or closes if it is gone
         if fresh:
             self.set_view("fit" if self.state.view != "top" else "top")
         self.refresh_panels()
@@ -295,7 +280,7 @@ class StudioSession:
             shown, steps = self.state.shown, self.state.steps
             step = steps[shown - 1] if 0 < shown <= len(steps) else None
             self.view.heat_map(step if self.placement.heat.value and shown < len(steps) else None)
-        self._place_controls()
+        self.picking.place_controls()
 
     def room_of(self) -> RoomOf:
         """Which room an object is placed in: an apartment's rooms are solved one by one."""
@@ -397,184 +382,6 @@ class StudioSession:
         self.constraints.metrics.content = metrics_table(m, energy, habit_checks(gen.plan, gen.layout))
         return findings
 
-    # ---- picking and moving -----------------------------------------------------------------------
-
-    def pick(self, object_id: str | None) -> None:
-        """Select an object (a click on it): highlighted, its panel above the tabs, the gizmo on its top (in an
-        apartment its room becomes the one edited)."""
-        scene = self.displayed()
-        if scene is None:
-            return
-        obj = next((o for o in scene.all_objects() if o.id == object_id), None)
-        if obj is not None and self.apartment.current is not None:
-            self.apartment.focus_on(obj.id)
-        gen = self.state.gen
-        self.selected = obj.id if obj is not None else None
-        self.view.select(self.selected, scene)
-        self.picked.visible = obj is not None
-        if obj is None:
-            self._place_controls()
-            return
-        self._show_picked(obj)
-        if gen is not None and obj.id in {o.id for o in gen.plan.objects}:
-            self.constraints.select(obj.id)
-        self._place_controls()
-
-    def _show_picked(self, obj) -> None:
-        cat = catalogue()
-        t = cat.host(obj.type) if obj.type in cat else None
-        flags = ", ".join(k for k, v in (t.flags.items() if t else []) if v) or "—"
-        self.picked.label = f"Picked: {obj.id}"
-        self.picked_md.content = (f"**{obj.id}** ({obj.type}, {obj.role})\n\nasset `{obj.asset_id}` · "
-                                  f"{obj.size.x:.2f} × {obj.size.z:.2f} × {obj.size.y:.2f} m · at ({obj.x:.2f}, "
-                                  f"{obj.z:.2f}) facing {obj.rotation:.0f}°\n\n{flags}")
-        self.pose_x.value, self.pose_z.value, self.pose_rot.value = round(obj.x, 3), round(obj.z, 3), obj.rotation
-
-    def _offset(self) -> tuple[float, float]:
-        """Where the room edited has its (0, 0) corner on screen: the house frame in an apartment."""
-        return self.apartment.offset() if self.apartment.current is not None else (0.0, 0.0)
-
-    def _on_screen(self, object_id: str):
-        """An object of the room edited as drawn (in the house frame in an apartment)."""
-        return next(o for o in self.displayed().objects if o.id == object_id)
-
-    def _movable(self) -> bool:
-        gen = self.state.gen
-        return gen is not None and self.selected in {o.id for o in gen.plan.objects}
-
-    def _place_controls(self) -> None:
-        """The drag gizmo sits on the selected object's top and stays there after each drag."""
-        if not self._movable():
-            if self.controls is not None:
-                self.controls.remove()
-                self.controls = None
-            return
-        obj = self._on_screen(self.selected)
-        where = world(obj.x, obj.y + obj.size.y / 2 + 0.03, obj.z)
-        if self.controls is None:
-            self.controls = self.client.scene.add_transform_controls(
-                "/drag", scale=max(0.5, 0.6 * max(obj.size.x, obj.size.z)), active_axes=(True, False, True),
-                disable_rotations=True, depth_test=False, position=where)
-            self.controls.on_update(self._dragging)
-        else:
-            self.controls.position = where
-            self.controls.wxyz = (1.0, 0.0, 0.0, 0.0)
-
-    def _dragging(self, event) -> None:
-        if self.selected is None or self.state.gen is None:
-            return
-        x, _, neg_z = self.controls.position
-        dx, dz = self._offset()
-        room_x, room_z = float(x) - dx, float(-neg_z) - dz
-        if event.phase == "end":
-            before = self.state.gen.layout.placement(self.selected)
-            self.move_to(self.selected, room_x, room_z, before.rotation, how="drag")
-            return
-        now = time.perf_counter()  # while dragging: the object follows, the checks re-run (throttled)
-        self.view.move(self._on_screen(self.selected).model_copy(update={"x": float(x), "z": float(-neg_z)}))
-        if self.apartment.current is not None and (to := self.apartment.room_at(float(x), float(-neg_z))) not in (
-                None, self.state.values.room):
-            self.checks_md.content = f"**Release to carry `{self.selected}` into {self.apartment.label(to)}.**"
-            return
-        if now - self._last_live < LIVE_RESCORE_S:
-            return
-        self._last_live = now
-        moved = self.pipeline.move(self.state.gen, self.selected, room_x, room_z,
-                                   self.state.gen.layout.placement(self.selected).rotation, self.state.seed)
-        self.refresh_checks(moved)
-
-    def apply_pose(self) -> None:
-        if self._movable():
-            dx, dz = self._offset()  # the fields show the pose on screen
-            self.move_to(self.selected, float(self.pose_x.value) - dx, float(self.pose_z.value) - dz,
-                         float(self.pose_rot.value), how="typed pose")
-
-    def turn(self, degrees: int) -> None:
-        if self._movable():
-            p = self.state.gen.layout.placement(self.selected)
-            self.move_to(self.selected, p.x, p.z, round((p.rotation + degrees) / 90) * 90, how=f"turn {degrees:+d}°")
-
-    def move_to(self, object_id: str, x: float, z: float, rotation: float, how: str) -> None:
-        """A designer's move (drag, typed pose or turn; `x`, `z` in the room's frame): undoable, stored as an
-        edit, checked at once."""
-        if self.apartment.current is not None and self._carried(object_id, x, z, rotation, how):
-            return
-        with self.lock:
-            gen = self.state.gen
-            before = gen.layout.placement(object_id)
-            new = self.pipeline.move(gen, object_id, x, z, rotation, self.state.seed)
-            apartment = self.state.values.apartment
-            if apartment is not None:
-                new, _, apartment = self.apartment.fold(new, None)
-            self.history.record(f"move {object_id}", self.state.values)
-            edit = move_row(object_id, before, x, z, rotation)
-            put = new.layout.placement(object_id)
-            moved = tuple(m for m in self.state.values.moved if m[0] != object_id) + ((object_id, pose_of(put)),)
-            self.state.values = replace(self.state.values, gen=new, edits=self.state.edits + (edit,), moved=moved,
-                                        apartment=apartment)
-        obj = self._on_screen(object_id)
-        for o in [obj, *obj.children]:
-            self.view.move(o)
-        self._place_controls()
-        if self.selected == object_id:
-            self._show_picked(obj)
-        findings = self.refresh_checks()
-        if apartment is not None:
-            self.graph_md.content = self.apartment.summary()  # Key_NAV through the doors after the move
-        self.set_unsaved(True)
-        self.say(f"Moved `{object_id}` to ({obj.x:.2f}, {obj.z:.2f}) facing {rotation % 360:.0f}° ({how}). "
-                 + (f"⚠ {len(findings)} check(s) fail." if findings else "All checks pass.")
-                 + f" {len(self.state.edits)} designer edit(s); **Undo** reverts.")
-
-    def _carried(self, object_id: str, x: float, z: float, rotation: float, how: str) -> bool:
-        """In an apartment, a move that lands in another room carries the object there (ApartmentMode.carry)."""
-        dx, dz = self._offset()
-        to = self.apartment.room_at(x + dx, z + dz)
-        if to is None or to == self.state.values.room:
-            return False
-        new_id = self.apartment.carry(object_id, to, x + dx, z + dz, rotation)
-        self.redraw()  # the ids changed
-        self.pick(new_id)
-        self.constraints.update()
-        findings = self.refresh_checks()
-        self.graph_md.content = self.apartment.summary()
-        self.set_unsaved(True)
-        self.say(f"Carried `{object_id}` into {self.apartment.label()} as `{new_id}` ({how}). "
-                 + (f"⚠ {len(findings)} check(s) fail." if findings else "All checks pass.")
-                 + f" {len(self.state.edits)} designer edit(s); **Undo** reverts.")
-        return True
-
-    def still_moved(self) -> list[str]:
-        """The objects the designer moved that are still where they were put (a re-plan may have moved them)."""
-        gen = self.state.gen
-        return [oid for oid, pose in self.state.values.moved
-                if (p := gen.layout.placement(oid)) is not None and pose_of(p) == pose]
-
-    def replace_rest(self) -> None:
-        """Re-plan from the designer's moves (Pipeline.replace_around): undoable, stored as an edit."""
-        gen = self.state.gen
-        if gen is None:
-            self.say("**Error:** Nothing to re-place: generate a scene first.")
-            return
-        moved = self.still_moved()
-        if not moved:
-            self.say("Move an object first (drag it, type a pose or turn it): **Re-place the rest** keeps the "
-                     "objects you moved where you put them and places the others again around them.")
-            return
-        with self.busy("Re-placing the rest around your moves") as free:
-            if not free:
-                return
-            if not self.run(lambda obs: self.pipeline.replace_around(gen, moved, self.state.seed, self.state.solver,
-                                                                      obs),
-                             fresh=False, record="re-place the rest", keep_reference=True):
-                return
-            self.state.values = replace(self.state.values, edits=self.state.edits + (
-                Edit("re-place", ", ".join(moved), None, None),))
-        shifted = [p.id for p in self.state.gen.layout.placements
-                   if (q := gen.layout.placement(p.id)) is None or pose_of(q) != pose_of(p)]
-        self.say(f"{self.status.content}\n\nRe-placed around {', '.join(f'`{m}`' for m in moved)} (kept where you "
-                 f"put them); the placer moved: {', '.join(shifted) or 'nothing'}.")
-
     # ---- undo / redo ------------------------------------------------------------------------------
 
     def undo(self) -> None:
@@ -594,7 +401,7 @@ class StudioSession:
         self.redraw()
         self.refresh_panels()
         self.refresh_checks()
-        if self.selected:
-            self.pick(self.selected)
+        if self.picking.selected:
+            self.picking.pick(self.picking.selected)
         self.set_unsaved(True)
         self.say(f"{verb}: {snap.label}.")

@@ -70,9 +70,9 @@ def test_apartment_in_the_studio(browser, studio):  # noqa: F811
     page.screenshot(path=str(SCREENSHOTS / "apartment-top.png"))  # the README's picture (docs/apartment-studio.png)
 
     fridge = next(o for o in session.displayed().objects if o.type == "Fridge")
-    session.pick(fridge.id)  # the gizmo on its top, where it stands in the house
-    assert session.picked.visible and fridge.id in session.picked_md.content
-    assert np.allclose(session.controls.position[::2], world(fridge.x, 0, fridge.z)[::2], atol=1e-3)
+    session.picking.pick(fridge.id)  # the gizmo on its top, where it stands in the house
+    assert session.picking.picked.visible and fridge.id in session.picking.picked_md.content
+    assert np.allclose(session.picking.controls.position[::2], world(fridge.x, 0, fridge.z)[::2], atol=1e-3)
     session.placement.animate("Step")  # from the start: the first room's first object
     assert "room 1 / 3 (kitchen)" in session.placement.step_md.content
     rooms_in_order = []
@@ -133,8 +133,8 @@ def test_editing_a_room_of_an_apartment(browser, studio):  # noqa: F811
 
     bed = next(o for o in session.displayed().objects if o.type == "Bed")
     session.state.busy = True  # while a re-plan of the kitchen runs, a click elsewhere does not change the room
-    session.pick(bed.id)
-    assert session.state.values.room == 0 and session.controls is None
+    session.picking.pick(bed.id)
+    assert session.state.values.room == 0 and session.picking.controls is None
     session.state.busy = False
 
     # a real click on the living room's sofa makes the living room the room edited
@@ -145,11 +145,11 @@ def test_editing_a_room_of_an_apartment(browser, studio):  # noqa: F811
     settle(page, 6)
     sofa = next(o for o in session.displayed().objects if o.type == "Sofa")
     page.mouse.click(*screen_xy(session, world(sofa.x, sofa.y + sofa.size.y / 2, sofa.z)))
-    wait_until(page, lambda: session.selected == sofa.id, "the picked sofa")
+    wait_until(page, lambda: session.picking.selected == sofa.id, "the picked sofa")
     page.get_by_text("Editing room 2 (living room) of the apartment").wait_for(timeout=WAIT)
     assert session.state.values.room == 1 and set(session.constraints.object.options) == \
         {o.id for o in first.plans[1].objects}
-    assert session.controls is not None
+    assert session.picking.controls is not None
     page.get_by_role("button", name="Fit room").click()  # frames the room edited, not the house
     wait_until(page, lambda: session.state.view == "room", "the living room framed")
     living, free = first.floorplan.rooms[1], VIEWPORT["width"] - PANEL_PX
@@ -191,11 +191,11 @@ def test_editing_a_room_of_an_apartment(browser, studio):  # noqa: F811
                            world(p.x + offset.x, 0, p.z + offset.z)[::2], atol=1e-3), p.id
 
     # a typed pose is in the house frame, as the fields show it; the layout keeps the room's frame
-    session.pick(sofa.id)
+    session.picking.pick(sofa.id)
     shown = next(o for o in session.displayed().objects if o.id == sofa.id)
-    assert session.pose_x.value == round(shown.x, 3)
+    assert session.picking.pose_x.value == round(shown.x, 3)
     target = round(offset.x + offset.room.width / 2, 2)
-    enter(page, "x (m)", target, session.pose_x)
+    enter(page, "x (m)", target, session.picking.pose_x)
     page.get_by_role("button", name="Apply pose").click()
     page.get_by_text(re.compile(rf"Moved {sofa.id} to \({target:.2f}")).wait_for(timeout=WAIT)
     assert abs(session.state.gen.layout.placement(sofa.id).x - (target - offset.x)) < 1e-3
@@ -204,8 +204,8 @@ def test_editing_a_room_of_an_apartment(browser, studio):  # noqa: F811
 
     # a real drag of the gizmo's x arrow, in the house: the layout takes it in the room's frame
     settle(page, 6)
-    top = np.asarray(session.controls.position)
-    arrow, shift = 0.5 * session.controls.scale, 0.4
+    top = np.asarray(session.picking.controls.position)
+    arrow, shift = 0.5 * session.picking.controls.scale, 0.4
     page.mouse.move(*screen_xy(session, top + (arrow, 0, 0)))
     page.mouse.down()
     page.mouse.move(*screen_xy(session, top + (arrow + shift, 0, 0)), steps=15)
@@ -266,16 +266,16 @@ def test_an_object_put_into_another_room_is_carried_there(browser, studio):  # n
     wait_until(page, lambda: len(session.placement.energy_plot.data[0]) == len(session.state.steps),
                "the energy plot of the apartment's steps")
     table = next(o for o in first.plans[0].objects if o.holds)  # what the bread stands on, in the kitchen
-    session.pick(table.id)
+    session.picking.pick(table.id)
     living = first.floorplan.rooms[1]
     x, z = round(living.x + living.room.width / 2, 2), round(living.z + living.room.depth / 2, 2)
-    enter(page, "x (m)", x, session.pose_x)
-    enter(page, "z (m)", z, session.pose_z)
+    enter(page, "x (m)", x, session.picking.pose_x)
+    enter(page, "z (m)", z, session.picking.pose_z)
     page.get_by_role("button", name="Apply pose").click()
     page.get_by_text(re.compile(rf"Carried {table.id} into room 2 \(living room\) as r2-")).wait_for(timeout=WAIT)
 
     carried = session.apartment.current
-    new_id = session.selected
+    new_id = session.picking.selected
     assert new_id.startswith("r2-") and session.state.values.room == 1 and session.state.gen.plan == carried.plans[1]
     put = carried.layouts[1].placement(new_id)
     assert (put.x, put.z) == pytest.approx((x - living.x, z - living.z), abs=1e-3)
@@ -300,7 +300,7 @@ def test_an_object_put_into_another_room_is_carried_there(browser, studio):  # n
     assert session.apartment.current is carried and new_id in session.view.objects
 
     # the room it went to is edited like any other: re-placed around it, then saved with the carry in the log
-    session.pick(new_id)  # (undo left it unpicked: it was not there)
+    session.picking.pick(new_id)  # (undo left it unpicked: it was not there)
     page.get_by_role("button", name="Re-place the rest").click()
     page.get_by_text(re.compile(rf"Re-placed around {new_id}")).wait_for(timeout=WAIT)
     around = session.apartment.current
@@ -336,10 +336,10 @@ def test_a_drag_through_the_wall_says_it_will_carry_and_carries_on_release(brows
     page.get_by_role("button", name="Top view").click()
     wait_until(page, lambda: session.state.view == "top", "the top view")
     settle(page, 6)
-    session.pick(obj.id)
+    session.picking.pick(obj.id)
     settle(page, 4)
-    top = np.asarray(session.controls.position)
-    arrow = 0.5 * session.controls.scale  # the x arrow points along +x: grabbed there, dragged either way
+    top = np.asarray(session.picking.controls.position)
+    arrow = 0.5 * session.picking.controls.scale  # the x arrow points along +x: grabbed there, dragged either way
     page.mouse.move(*screen_xy(session, top + (arrow, 0, 0)))
     page.mouse.down()
     page.mouse.move(*screen_xy(session, top + (arrow + shift, 0, 0)), steps=20)
@@ -350,4 +350,4 @@ def test_a_drag_through_the_wall_says_it_will_carry_and_carries_on_release(brows
     page.get_by_text(re.compile(rf"Carried {obj.id} into {re.escape(label)} as r{to + 1}-")).wait_for(timeout=WAIT)
     carried = session.apartment.current
     assert obj.id not in {o.id for p in carried.plans for o in p.objects}
-    assert session.state.values.room == to and session.selected in {o.id for o in carried.plans[to].objects}
+    assert session.state.values.room == to and session.picking.selected in {o.id for o in carried.plans[to].objects}

@@ -101,7 +101,7 @@ def test_a_hidpi_screen_frames_the_room_beside_the_panel_and_clicks_pick(browser
     assert scale == 2 and floor_like(shot[:, :int(free * scale)]).mean() > 0.08
     assert floor_like(shot[:, int((free + 20) * scale):]).mean() < 0.02  # the room is not under the panel
     page.mouse.click(*object_xy(session, "fridge-0"))  # a click where the fridge is drawn picks it
-    wait_until(page, lambda: session.selected == "fridge-0", "the picked fridge")
+    wait_until(page, lambda: session.picking.selected == "fridge-0", "the picked fridge")
 
 
 def test_drag_into_collision_warns_asks_before_saving_and_undo_restores(browser, studio):
@@ -115,16 +115,16 @@ def test_drag_into_collision_warns_asks_before_saving_and_undo_restores(browser,
     placed_findings = list(session.state.findings)  # what the placer left, before any edit
     o = next(o for o in session.state.gen.scene.objects if o.id == "fridge-0")
     page.mouse.click(*screen_xy(session, (o.x, o.y, -o.z)))
-    wait_until(page, lambda: session.controls is not None, "the gizmo on the picked fridge")
+    wait_until(page, lambda: session.picking.controls is not None, "the gizmo on the picked fridge")
     settle(page)
     # the gizmo sits on the fridge's top; drag the arrow of the axis that separates fridge and counter
     # (browser x is the room's x, browser +z the room's -z)
-    top = np.asarray(session.controls.position)
+    top = np.asarray(session.picking.controls.position)
     assert abs(top[1] - (o.y + o.size.y / 2)) < 0.1
     along_x = abs(counter.x - fridge.x) > abs(counter.z - fridge.z)
     axis = np.array((1.0, 0, 0)) if along_x else np.array((0, 0, 1.0))
     shift = counter.x - fridge.x if along_x else fridge.z - counter.z
-    arrow = 0.5 * session.controls.scale
+    arrow = 0.5 * session.picking.controls.scale
     grab = screen_xy(session, top + arrow * axis)
     drop = screen_xy(session, top + (arrow + shift) * axis)
     page.mouse.move(*grab)
@@ -138,7 +138,7 @@ def test_drag_into_collision_warns_asks_before_saving_and_undo_restores(browser,
     else:
         assert abs(moved.z - counter.z) < 0.3 and moved.x == fridge.x
     # the gizmo stays on it: the layout keeps 0.1 mm, and viser skips a position within its relative 1e-5 of the last
-    assert session.controls is not None and abs(session.controls.position[2] + moved.z) < 1e-4
+    assert session.picking.controls is not None and abs(session.picking.controls.position[2] + moved.z) < 1e-4
 
     page.get_by_role("tab", name="Scenes").click()
     page.get_by_role("button", name="Accept & save").click()
@@ -174,11 +174,11 @@ def test_typed_pose_onto_another_object_then_replace_the_rest_around_it(browser,
     counter = session.state.gen.layout.placement("countertop-0")
     o = next(o for o in session.state.gen.scene.objects if o.id == "fridge-0")
     page.mouse.click(*screen_xy(session, (o.x, o.y, -o.z)))
-    wait_until(page, lambda: session.selected == "fridge-0", "the picked fridge")
+    wait_until(page, lambda: session.picking.selected == "fridge-0", "the picked fridge")
     page.get_by_role("button", name="Re-place the rest").click()  # nothing moved yet: it says what to do
     page.get_by_text(re.compile("Move an object first")).wait_for(timeout=WAIT)
-    enter(page, "x (m)", round(counter.x, 2), session.pose_x)
-    enter(page, "z (m)", round(counter.z, 2), session.pose_z)
+    enter(page, "x (m)", round(counter.x, 2), session.picking.pose_x)
+    enter(page, "z (m)", round(counter.z, 2), session.picking.pose_z)
     page.get_by_role("button", name="Apply pose").click()
     page.get_by_text(re.compile(r"fridge-0.* collides with")).first.wait_for(timeout=WAIT)
     put = session.state.gen.layout.placement("fridge-0")
@@ -210,8 +210,8 @@ def test_downloads_are_the_selected_version(browser, studio):
     chair = session.state.gen.layout.placement("chair-1")
     settle(page)
     page.mouse.click(*object_xy(session, "chair-1", 0.9))  # a typed-in pose and a turn, in the picked panel
-    wait_until(page, lambda: session.selected == "chair-1", "chair-1 picked")
-    enter(page, "x (m)", round(chair.x - 0.4, 2), session.pose_x)
+    wait_until(page, lambda: session.picking.selected == "chair-1", "chair-1 picked")
+    enter(page, "x (m)", round(chair.x - 0.4, 2), session.picking.pose_x)
     page.get_by_role("button", name="Apply pose").click()
     page.get_by_text(re.compile(r"Moved `?chair-1`? .*typed pose")).wait_for(timeout=WAIT)
     page.get_by_role("button", name="+90°").click()

@@ -173,8 +173,8 @@ def main(args) -> int:
                 moved = designer_move(pipeline, session.state.gen)
                 name = dragged(moved)
                 onto = moved.layout.placement(name)
-                session.move_to(name, onto.x, onto.z, onto.rotation, how="bench")
-                session.pick(name)
+                session.picking.move_to(name, onto.x, onto.z, onto.rotation, how="bench")
+                session.picking.pick(name)
                 button = page.get_by_role("button", name="Re-place the rest")
                 button.wait_for(state="visible", timeout=30_000)
                 page.wait_for_timeout(300)  # the picked object's panel has opened and the move's checks are shown

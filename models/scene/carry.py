@@ -80,6 +80,7 @@ def carry(apartment: Apartment, object_id: str, to: int, x: float, z: float, rot
 
     going = {o.type for o in [obj, *riders] if o.role != "context"}
     rooms = apartment.floorplan.rooms
-    assignment = {t: rooms[to].id if t in going and r == rooms[k].id else r for t, r in apartment.plan.assignment.items()}
+    assignment = {t: rooms[to].id if t in going and r == rooms[k].id else r
+                  for t, r in apartment.plan.assignment.items()}
     house = apartment.plan.model_copy(update={"room_plans": room_plans, "assignment": assignment})
     return assemble_apartment(house, plans, layouts, apartment.task_graph, seed), new_id

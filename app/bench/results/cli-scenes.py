@@ -40,12 +40,13 @@ def main() -> None:
     with tempfile.TemporaryDirectory() as tmp:
         env = {**os.environ, "DATABASE_URL": f"sqlite:///{tmp}/bench.db", "H3DS_PARSER": "rules"}
         timed(["generate", BREAD, "--room-type", "kitchen", "--out", f"{tmp}/warm"], env)  # not timed: warms caches
-        print(f"{N} rounds, a fresh h3ds process each (rule parser, plan2place); p50 s of wall time, x: / generate's p50")
+        print(f"{N} rounds, a fresh h3ds process each (rule parser, plan2place); p50 s of wall time, "
+              "x: / generate's p50")
         for case in CASES:
             runs = [one_round(case, Path(tmp), k, env) for k in range(N)]
             gen = statistics.median(r["generate"] for r in runs)
-            cells = [f"{what} {statistics.median(r[what] for r in runs):.2f} "
-                     f"({statistics.median(r[what] for r in runs) / gen:.2f} x)" for what in runs[0] if what != "generate"]
+            p50 = {what: statistics.median(r[what] for r in runs) for what in runs[0]}
+            cells = [f"{what} {p50[what]:.2f} ({p50[what] / gen:.2f} x)" for what in p50 if what != "generate"]
             print(f"  {case:10s} generate {gen:.2f}   " + "   ".join(cells))
 
 

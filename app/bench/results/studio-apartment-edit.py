@@ -76,7 +76,7 @@ def in_browser(page, session, text: str, seed: int, house: bool) -> tuple[float,
     wait_for(page, rf"{'Apartment' if house else 'Scene'} ready \(#{run}\)|Error")
     generate = time.perf_counter() - t0
     oid, constraints = edited_text(session.apartment.current.plans[EDITED] if house else session.state.gen.plan)
-    session.pick(oid)  # in an apartment the living room becomes the one edited (as a click would; not timed)
+    session.picking.pick(oid)  # in an apartment the living room becomes the one edited (as a click would; untimed)
     page.get_by_role("tab", name="Constraints").click()
     session.constraints.text.value = constraints
     session.constraints.message.content = ""  # the line the wait looks for, from the apartment before
@@ -90,8 +90,8 @@ def in_browser(page, session, text: str, seed: int, house: bool) -> tuple[float,
         if session.placement.energy_plot.data is not plotted:
             break
         page.wait_for_timeout(100)
-    session.pick(oid)
-    session.pose_x.value = round(float(session.pose_x.value) + SHIFT, 3)
+    session.picking.pick(oid)
+    session.picking.pose_x.value = round(float(session.picking.pose_x.value) + SHIFT, 3)
     page.wait_for_timeout(300)
     t0 = time.perf_counter()
     page.get_by_role("button", name="Apply pose").click()

@@ -1,9 +1,10 @@
 """What the studio's server does for a designer's move (a drag's end, a typed pose or a turn), without the browser:
 the pipeline's `move` and the read-outs that follow it (the checks with their metrics, the exact energy, the habits
-of the iTHOR rooms), as `StudioSession.move_to` and `refresh_checks` run them. The robot's occupancy grid is asked
-about three times per move (the checks, Key_NAV and NAV), each time testing every cell centre against the furniture;
-the centres are now made once per room (models.energy.navigation._cell_centres). Alternates, per move, that with the
-centres made afresh each time (the function the cache wraps), on N rooms of the ALFRED instructions, 5 moves each.
+of the iTHOR rooms), as `PickingPanel.move_to` and `StudioSession.refresh_checks` run them. The robot's occupancy
+grid is asked about three times per move (the checks, Key_NAV and NAV), each time testing every cell centre against
+the furniture; the centres are now made once per room (models.energy.navigation._cell_centres). Alternates, per move,
+that with the centres made afresh each time (the function the cache wraps), on N rooms of the ALFRED instructions,
+5 moves each.
 Run from a tree's root: PYTHONPATH=. python app/bench/results/studio-move-checks.py > app/bench/results/studio-move-checks.txt
 """
 
