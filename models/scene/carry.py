@@ -1,4 +1,4 @@
-"""An object carried from one room of an apartment to another (a designer's drag through a door).
+"""An object carried from one room of an apartment to another (a designer's drag onto another room's floor).
 
 The object goes with what stands on it. It takes the destination room's id prefix (`r2-armchair-0` -> `r3-armchair-0`,
 the next free number if that is taken), since an apartment's ids say which room holds them. The source room's
@@ -14,7 +14,7 @@ import re
 from models.constraints.holodeck_text import without_object
 from models.placement import PlacementProblem
 from models.scene.apartment import assemble_apartment
-from models.values import Placement
+from models.values import Placement, RoomPlan
 from models.values.apartment import Apartment
 
 
@@ -61,9 +61,10 @@ def carry(apartment: Apartment, object_id: str, to: int, x: float, z: float, rot
     room_plans[k] = source_rp.model_copy(update={
         "objects": [o for o in source_rp.objects if o.id != object_id],
         "surface_objects": [s for s in source_rp.surface_objects if s.parent != object_id]})
-    room_plans[to] = type(dest_rp).model_validate({  # validated again: `holds` marks what the object carries
-        **dest_rp.model_dump(), "objects": [*dest_rp.model_dump()["objects"], obj.model_dump()],
-        "surface_objects": [*dest_rp.model_dump()["surface_objects"], *(s.model_dump() for s in moved_riders)]})
+    dumped = dest_rp.model_dump()  # validated again, so that `holds` marks what the object carries
+    room_plans[to] = RoomPlan.model_validate({**dumped, "objects": [*dumped["objects"], obj.model_dump()],
+                                              "surface_objects": [*dumped["surface_objects"],
+                                                                  *(r.model_dump() for r in moved_riders)]})
     arrived = next(o for o in room_plans[to].objects if o.id == new_id)
 
     source, dest = apartment.plans[k], apartment.plans[to]
