@@ -6,6 +6,7 @@ gets a 422 that names the field. OpenAPI docs are served at /docs.
 
 from __future__ import annotations
 
+import dataclasses
 import json
 from typing import Annotated
 
@@ -179,7 +180,7 @@ def create_app(store: Store, pipeline: Pipeline | None = None) -> FastAPI:
             done = apply_edits(pipeline, req.scene or req.apartment, req.edits, req.room, req.seed, req.solver)
         except EditError as e:
             raise HTTPException(422, [{"loc": ["body", *e.loc], "msg": str(e)}]) from e
-        log = [{"kind": e.kind, "target": e.target, "before": e.before, "after": e.after} for e in done.log]
+        log = [dataclasses.asdict(e) for e in done.log]
         shape = _apartment(done.value) if req.apartment else _single(done.room)
         return {**shape, "edits": log, "findings": _findings(done.findings)}
 

@@ -4,6 +4,7 @@ in the studio's database as a scene or its next version, and a stored version wr
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import json
 import sys
 from pathlib import Path
@@ -33,8 +34,7 @@ def cmd_edit(args) -> int:
         log.write_text(earlier.read_text())
     with log.open("a") as f:
         for row in done.log:
-            f.write(json.dumps({"kind": row.kind, "target": row.target, "before": row.before, "after": row.after})
-                    + "\n")
+            f.write(json.dumps(dataclasses.asdict(row)) + "\n")
     for p in [*paths, log]:
         print(p)
     for finding in done.findings:
