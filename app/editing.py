@@ -96,8 +96,9 @@ def generated_seed(scene: Scene) -> int:
 
 def apply_edits(pipeline: Pipeline, value: Scene | Apartment, edits: list[EditStep], room: int | None = None,
                 seed: int | None = None, solver: str | None = None) -> Edited:
-    """`edits` in order on the scene or on room `room` of the apartment (a carried object leaves it); `seed`: the one
-    it was generated with if left out. Raises EditError naming the edit that does not fit; nothing is changed then."""
+    """`edits` in order on the scene or on room `room` of the apartment (after a carry, on the room the object went
+    to); `seed`: the one it was generated with if left out. Raises EditError naming the edit that does not fit;
+    nothing is changed then."""
     gen = room_of(value, room)
     seed = generated_seed(gen.scene) if seed is None else seed
     before, log = gen, []
@@ -108,6 +109,7 @@ def apply_edits(pipeline: Pipeline, value: Scene | Apartment, edits: list[EditSt
                 raise EditError(("edits", i, "to_room"), f"scene {value.id} is a single room: leave to_room out")
             house = with_room(value, room - 1, gen.plan, gen.layout, seed)  # the edits so far, then the carry
             value, row = _carry(house, room, edit, seed, ("edits", i), where)
+            room = edit.to_room  # as in the studio, the edits that follow are in the room it went to
             gen = room_generation(value, room - 1)
         else:
             gen, row = _apply(pipeline, gen, edit, seed, solver, ("edits", i), where)

@@ -210,6 +210,11 @@ def test_an_apartment_object_is_carried_into_another_room_after_the_edits_before
     want, new_id = carry(moved, table.id, 1, 2.0, 2.5, next(p for p in kitchen.layout.placements
                                                              if p.id == table.id).rotation, SEED)
     assert Apartment.model_validate(r.json()["apartment"]) == want and new_id.startswith("r2-")
+    follow = edit(api, flat, [{"kind": "move", "object": table.id, "x": 2.0, "z": 2.5, "to_room": 2},
+                              {"kind": "replace_around", "objects": [new_id]}], room=1)  # then in the living room
+    assert follow.status_code == 200, follow.text
+    around = pipeline.replace_around(room_generation(want, 1), [new_id], SEED)
+    assert Apartment.model_validate(follow.json()["apartment"]).layouts[1].placements == around.layout.placements
     assert r.json()["edits"][1] == {"kind": "carry", "target": table.id,
                                     "before": {"room": 1, "pose": list(pose_of(kitchen.layout.placement(table.id)))},
                                     "after": {"room": 2, "id": new_id, "pose": [2.0, 2.5, want.layouts[1].placement(
