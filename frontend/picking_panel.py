@@ -178,6 +178,18 @@ class PickingPanel:
         s.say(f"Carried `{object_id}` into {s.apartment.label()} as `{new_id}` ({how}). " + self._checked(findings))
         return True
 
+    def renamed(self, object_id: str) -> str:
+        """`object_id` as the scene on screen names it: a carry gives an object a new id, which an undo takes back
+        and a redo gives again (the ids of the edit log's `carry` rows)."""
+        scene = self.session.displayed()
+        if scene is None or any(o.id == object_id for o in scene.all_objects()):
+            return object_id
+        ids = {o.id for o in scene.objects}
+        for e in reversed(self.session.state.edits):
+            if e.kind == "carry" and object_id in (e.target, e.after["id"]):
+                return next((i for i in (e.target, e.after["id"]) if i in ids), object_id)
+        return object_id
+
     def _checked(self, findings) -> str:
         """The status line's tail after a move: the checks and the edits so far."""
         return ((f"⚠ {len(findings)} check(s) fail." if findings else "All checks pass.")

@@ -402,6 +402,6 @@ class StudioSession:
         self.refresh_panels()
         self.refresh_checks()
         if self.picking.selected:
-            self.picking.pick(self.picking.selected)
+            self.picking.pick(self.picking.renamed(self.picking.selected))
         self.set_unsaved(True)
         self.say(f"{verb}: {snap.label}.")

@@ -295,12 +295,13 @@ def test_an_object_put_into_another_room_is_carried_there(browser, studio):  # n
     page.get_by_text(f"Undid: carry {table.id}.").wait_for(timeout=WAIT)
     assert session.apartment.current is first and session.state.values.room == 0
     assert table.id in session.view.objects and new_id not in session.view.objects
+    assert session.picking.selected == table.id  # still picked, by its id before the carry
     page.get_by_role("button", name="Redo").click()
     page.get_by_text(f"Redid: carry {table.id}.").wait_for(timeout=WAIT)
     assert session.apartment.current is carried and new_id in session.view.objects
+    assert session.picking.selected == new_id and session.state.values.room == 1
 
     # the room it went to is edited like any other: re-placed around it, then saved with the carry in the log
-    session.picking.pick(new_id)  # (undo left it unpicked: it was not there)
     page.get_by_role("button", name="Re-place the rest").click()
     page.get_by_text(re.compile(rf"Re-placed around {new_id}")).wait_for(timeout=WAIT)
     around = session.apartment.current
