@@ -26,9 +26,10 @@ from models.planning.apartment_planner import ApartmentError, is_apartment, pars
 from models.planning.floorplan import FloorplanError
 from models.values import ConstraintPlan, Scene
 from models.values.apartment import APARTMENT, Apartment
+from models.values.edit import Edit
 from models.world import normalise_room_type
 from studio_db import NotFound, Store
-from studio_db.store import Edit, Stored, WrongKind
+from studio_db.store import Stored, WrongKind
 
 
 NDJSON = "application/x-ndjson"

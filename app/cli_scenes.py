@@ -117,7 +117,8 @@ def cmd_scenes_store(args) -> int:
     from app.editing import generated_seed
     from models.values.apartment import Apartment
     from studio_db import NotFound, Store
-    from studio_db.store import Edit, WrongKind
+    from models.values.edit import Edit
+    from studio_db.store import WrongKind
     folder = Path(args.dir)
     value = _generated(folder)
     rows = _edit_rows(folder / EDIT_LOG)

@@ -20,7 +20,7 @@ from models.scene.apartment import with_room
 from models.scene.carry import carry
 from models.values import Placement, Scene
 from models.values.apartment import Apartment
-from studio_db.store import Edit
+from models.values.edit import Edit
 
 MAX_EDITS = 100  # edits in one request
 MAX_CONSTRAINT_TEXT = 100_000  # characters of an edited constraint text

@@ -12,8 +12,8 @@ from dataclasses import replace
 
 from app.pipeline import kept_before_edit
 from models.constraints import GLOBALS, RELATIONS, Constraint, read_constraints, write_constraints
+from models.values.edit import Edit
 from models.world import catalogue
-from studio_db.store import Edit
 
 
 class _Rejected(Exception):

@@ -8,8 +8,8 @@ from dataclasses import replace
 
 from app.pipeline import Generation
 from models.values import TaskObject
+from models.values.edit import Edit
 from models.world import catalogue
-from studio_db.store import Edit
 
 ROLE_CHOICES = ("key", "anchor", "inference", "key + anchor", "anchor + inference")
 

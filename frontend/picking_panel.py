@@ -9,8 +9,8 @@ from dataclasses import replace
 from app.editing import move_row
 from app.pipeline import pose_of
 from frontend.view import world
+from models.values.edit import Edit
 from models.world import catalogue
-from studio_db.store import Edit
 
 LIVE_RESCORE_S = 0.3  # while dragging, the checks re-run at most this often
 

@@ -17,7 +17,7 @@ from models.exports.stored import glb_of, house_of
 from models.placement import SOLVERS
 from models.values import Scene
 from models.values.apartment import Apartment
-from studio_db.store import Edit
+from models.values.edit import Edit
 
 
 class ScenesPanel:

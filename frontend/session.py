@@ -42,9 +42,9 @@ from models.metrics.realism import checks as habit_checks
 from models.placement import ALL_OBJECTS, DEFAULT_SOLVER, SOLVERS, PlacementStep
 from models.values import Scene, TaskGraph
 from models.values.apartment import APARTMENT
+from models.values.edit import Edit
 from models.world import ROOM_TYPES
 from studio_db import Store
-from studio_db.store import Edit
 
 DEFAULT_INSTRUCTION = "Put a chilled bread on the counter"
 PROGRESS_S = 0.2  # the progress line is updated at most this often while placing

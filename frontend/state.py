@@ -9,7 +9,7 @@ from models.checks import Finding
 from models.metrics import SceneMetrics
 from models.placement import DEFAULT_SOLVER, PlacementStep
 from models.values.apartment import Apartment
-from studio_db.store import Edit
+from models.values.edit import Edit
 
 
 @dataclass(frozen=True)

@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import json
 import os
-from dataclasses import dataclass
 from pathlib import Path
 
 from sqlalchemy import event, func
@@ -19,6 +18,7 @@ from sqlmodel import Session, SQLModel, create_engine, select
 
 from models.values import Scene
 from models.values.apartment import APARTMENT, Apartment
+from models.values.edit import Edit
 from studio_db.tables import EditRow, SceneRow, VersionRow
 
 Stored = Scene | Apartment
@@ -52,14 +52,6 @@ def data_dir() -> Path:
 
 def default_database_url() -> str:
     return os.environ.get("DATABASE_URL") or f"sqlite:///{data_dir() / 'studio.db'}"
-
-
-@dataclass(frozen=True)
-class Edit:
-    kind: str
-    target: str
-    before: object
-    after: object
 
 
 class Store:

@@ -4,8 +4,8 @@ import os
 
 import pytest
 
+from models.values.edit import Edit
 from studio_db import NotFound, Store
-from studio_db.store import Edit
 
 
 @pytest.fixture(scope="module")
