@@ -46,6 +46,21 @@ def _placed(studio, session) -> list:
     return steps
 
 
+def _saved(page, studio, session, name: str, apartment) -> list[str]:
+    """*Accept & save* of the apartment on screen as a new scene (confirming over failed checks, as a designer
+    would); checks that the store holds `apartment` and returns the kinds of its edit log."""
+    page.get_by_role("tab", name="Scenes").click()
+    enter(page, "Name", name, session.scenes.save_name)
+    page.get_by_role("button", name="Accept & save").click()
+    if session.apartment.findings():
+        page.get_by_role("button", name="Save anyway").click()
+    saved = page.get_by_text(re.compile(r"Saved as scene \d+, version 1"))
+    saved.wait_for(timeout=WAIT)
+    scene_id = int(re.search(r"scene (\d+)", saved.inner_text()).group(1))
+    assert studio.store.scene(scene_id, 1) == apartment
+    return [e["kind"] for e in studio.store.edits(scene_id)]
+
+
 def test_apartment_in_the_studio(browser, studio):  # noqa: F811
     page, session = _three_rooms(browser, studio)
     apartment = session.apartment.current
@@ -245,16 +260,7 @@ def test_editing_a_room_of_an_apartment(browser, studio):  # noqa: F811
     page.get_by_text("Undid: regenerate from graph.").wait_for(timeout=WAIT)
     assert session.apartment.current is moved
 
-    page.get_by_role("tab", name="Scenes").click()
-    enter(page, "Name", "edited flat", session.scenes.save_name)
-    page.get_by_role("button", name="Accept & save").click()
-    if session.apartment.findings():  # the moved sofa may fail a check: the designer confirms
-        page.get_by_role("button", name="Save anyway").click()
-    saved = page.get_by_text(re.compile(r"Saved as scene \d+, version 1"))
-    saved.wait_for(timeout=WAIT)
-    scene_id = int(re.search(r"scene (\d+)", saved.inner_text()).group(1))
-    assert studio.store.scene(scene_id, 1) == moved
-    kinds = [e["kind"] for e in studio.store.edits(scene_id)]
+    kinds = _saved(page, studio, session, "edited flat", moved)  # the moved sofa may fail a check
     assert kinds[:7] == ["constraints", "move", "move", "re-place", "undo", "task-graph", "undo"]
     assert set(kinds[7:]) <= {"override"}
 
@@ -306,16 +312,7 @@ def test_an_object_put_into_another_room_is_carried_there(browser, studio):  # n
     page.get_by_text(re.compile(rf"Re-placed around {new_id}")).wait_for(timeout=WAIT)
     around = session.apartment.current
     assert around.layouts[1].placement(new_id) == put and around.layouts[0] == carried.layouts[0]
-    page.get_by_role("tab", name="Scenes").click()
-    enter(page, "Name", "carried table", session.scenes.save_name)
-    page.get_by_role("button", name="Accept & save").click()
-    if session.apartment.findings():
-        page.get_by_role("button", name="Save anyway").click()
-    saved = page.get_by_text(re.compile(r"Saved as scene \d+, version 1"))
-    saved.wait_for(timeout=WAIT)
-    scene_id = int(re.search(r"scene (\d+)", saved.inner_text()).group(1))
-    assert studio.store.scene(scene_id, 1) == around
-    kinds = [e["kind"] for e in studio.store.edits(scene_id)]
+    kinds = _saved(page, studio, session, "carried table", around)
     assert kinds[:4] == ["carry", "undo", "redo", "re-place"] and set(kinds[4:]) <= {"override"}
 
 
