@@ -82,18 +82,14 @@ class EditIn(BaseModel):
     after: object = None
 
 
-class AcceptRequest(BaseModel):
-    """A single room (`scene`) or an apartment (`apartment`, as POST /generate returns it): exactly one."""
+class SceneOrApartment(BaseModel):
+    """A single room (`scene`) or an apartment (`apartment`), as POST /generate returns them: exactly one."""
 
-    name: str = Field(min_length=1, max_length=200)
     scene: Scene | None = None
     apartment: Apartment | None = None
-    seed: int = Field(0, ge=0)
-    solver: str = Field(DEFAULT_SOLVER, min_length=1, max_length=40)
-    edits: list[EditIn] = Field(default_factory=list)
 
     @model_validator(mode="after")
-    def _one_value(self) -> AcceptRequest:
+    def _one_value(self) -> SceneOrApartment:
         if (self.scene is None) == (self.apartment is None):
             raise ValueError("give exactly one of scene (a single room) and apartment")
         return self
@@ -103,22 +99,21 @@ class AcceptRequest(BaseModel):
         return self.scene or self.apartment
 
 
-class EditRequest(BaseModel):
-    """Edits of a scene as POST /generate returned it or GET /scenes/.../versions/N gives it back: `scene`, or
-    `apartment` and the number of the `room` edited (from 1, as the floorplan's `room|N`)."""
+class AcceptRequest(SceneOrApartment):
+    name: str = Field(min_length=1, max_length=200)
+    seed: int = Field(0, ge=0)
+    solver: str = Field(DEFAULT_SOLVER, min_length=1, max_length=40)
+    edits: list[EditIn] = Field(default_factory=list)
 
-    scene: Scene | None = None
-    apartment: Apartment | None = None
+
+class EditRequest(SceneOrApartment):
+    """Edits of a scene as POST /generate returned it or GET /scenes/.../versions/N gives it back; in an apartment,
+    the number of the `room` edited (from 1, as the floorplan's `room|N`)."""
+
     room: int | None = Field(None, ge=1, examples=[2])
     edits: list[EditStep] = Field(min_length=1, max_length=MAX_EDITS)
     seed: int | None = Field(None, ge=0, le=2**31 - 1)  # the scene's own when left out
     solver: Annotated[str, AfterValidator(_known_solver)] = DEFAULT_SOLVER
-
-    @model_validator(mode="after")
-    def _one_value(self) -> EditRequest:
-        if (self.scene is None) == (self.apartment is None):
-            raise ValueError("give exactly one of scene (a single room) and apartment")
-        return self
 
 
 def _findings(found) -> list[dict]:
@@ -178,7 +173,7 @@ def create_app(store: Store, pipeline: Pipeline | None = None) -> FastAPI:
         shape plus `edits` (the log to store with POST /scenes) and `findings` (the checks the studio runs before
         saving; a single room's metric drops are against the scene sent)."""
         try:
-            done = apply_edits(pipeline, req.scene or req.apartment, req.edits, req.room, req.seed, req.solver)
+            done = apply_edits(pipeline, req.value, req.edits, req.room, req.seed, req.solver)
         except EditError as e:
             raise HTTPException(422, [{"loc": ["body", *e.loc], "msg": str(e)}]) from e
         log = [dataclasses.asdict(e) for e in done.log]
