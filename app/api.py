@@ -108,7 +108,8 @@ class AcceptRequest(SceneOrApartment):
 
 class EditRequest(SceneOrApartment):
     """Edits of a scene as POST /generate returned it or GET /scenes/.../versions/N gives it back; in an apartment,
-    the number of the `room` edited (from 1, as the floorplan's `room|N`)."""
+    the number of the `room` edited (from 1, as the floorplan's `room|N`; left out: the room of the object the first
+    edit names)."""
 
     room: int | None = Field(None, ge=1, examples=[2])
     edits: list[EditStep] = Field(min_length=1, max_length=MAX_EDITS)

@@ -170,7 +170,7 @@ def add_scene_commands(sub, solver_help: str, solver_list: str) -> None:
     what.add_argument("--replace-around", metavar="ID[,ID...]", help="keep these objects where they are and place "
                       "the others again around them")
     p.add_argument("--room", type=int, default=None, help="an apartment's room to edit: its number, as in "
-                   "rooms/N-TYPE")
+                   "rooms/N-TYPE (default: the room of the object --move or --replace-around names)")
     p.add_argument("--to-room", type=int, default=None, metavar="N", help="with --move in an apartment: carry the "
                    "object into room N (X, Z in that room's frame); it takes that room's id prefix (r3-...)")
     p.add_argument("--seed", type=int, default=None, help="default: the seed the scene was generated with")

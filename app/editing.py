@@ -17,7 +17,7 @@ from app.pipeline import Generation, Pipeline, generation_of, pose_of, room_gene
 from models.checks import Finding, apartment_findings, room_label, run_checks
 from models.metrics import scene_metrics
 from models.scene.apartment import with_room
-from models.scene.carry import carry
+from models.scene.carry import carry, room_holding
 from models.values import Placement, Scene
 from models.values.apartment import Apartment
 from models.values.edit import Edit
@@ -96,9 +96,11 @@ def generated_seed(scene: Scene) -> int:
 
 def apply_edits(pipeline: Pipeline, value: Scene | Apartment, edits: list[EditStep], room: int | None = None,
                 seed: int | None = None, solver: str | None = None) -> Edited:
-    """`edits` in order on the scene or on room `room` of the apartment (after a carry, on the room the object went
-    to); `seed`: the one it was generated with if left out. Raises EditError naming the edit that does not fit;
+    """`edits` in order on the scene or on room `room` of the apartment (left out: the room of the object the first
+    edit names; after a carry, the room the object went to); `seed`: the one it was generated with if left out. Raises EditError naming the edit that does not fit;
     nothing is changed then."""
+    if isinstance(value, Apartment) and room is None:
+        room = _room_named(value, edits[0]) if edits else None
     gen = room_of(value, room)
     seed = generated_seed(gen.scene) if seed is None else seed
     before, log = gen, []
@@ -119,6 +121,15 @@ def apply_edits(pipeline: Pipeline, value: Scene | Apartment, edits: list[EditSt
         return Edited(gen.scene, gen, log, found)
     house = with_room(value, room - 1, gen.plan, gen.layout, seed)
     return Edited(house, gen, log, apartment_findings(house))
+
+
+def _room_named(apartment: Apartment, edit: EditStep) -> int | None:
+    """The room (from 1) holding the object an edit names first, if it names one the apartment holds."""
+    named = edit.object if isinstance(edit, Move) else edit.objects[0] if isinstance(edit, ReplaceAround) else None
+    try:
+        return room_holding(apartment, named) + 1 if named else None
+    except ValueError:
+        return None
 
 
 def _carry(house: Apartment, room: int, edit: Move, seed: int, loc: tuple, where: str) -> tuple[Apartment, Edit]:

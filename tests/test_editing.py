@@ -133,12 +133,23 @@ def test_an_edit_that_does_not_fit_is_a_422_naming_it(api, kitchen, body, field,
                for d in detail), detail
 
 
-@pytest.mark.parametrize("room,words", [(None, "none was given"), (3, "not 3")])
-def test_an_apartment_edit_names_its_room(api, flat, room, words):
+@pytest.mark.parametrize("edits,room,words", [
+    ([{"kind": "constraints", "text": ""}], None, "none was given"),  # it names no object: say which room
+    ([{"kind": "move", "object": "r9-ghost-0", "x": 1, "z": 1}], None, "none was given"),
+    ([{"kind": "move", "object": "SOFA", "x": 1, "z": 1}], 3, "not 3"),
+])
+def test_an_apartment_edit_names_its_room(api, flat, edits, room, words):
     sofa = next(p for p in flat.layouts[1].placements if p.type == "Sofa")
-    r = edit(api, flat, [{"kind": "move", "object": sofa.id, "x": 1, "z": 1}], **({"room": room} if room else {}))
+    edits = [{**e, "object": sofa.id} if e.get("object") == "SOFA" else e for e in edits]
+    r = edit(api, flat, edits, **({"room": room} if room else {}))
     assert r.status_code == 422 and r.json()["detail"][0]["loc"] == ["body", "room"]
     assert "rooms 1-2" in r.json()["detail"][0]["msg"] and words in r.json()["detail"][0]["msg"]
+
+
+def test_an_apartment_edit_without_a_room_is_in_the_room_of_the_object_it_names(api, flat):
+    sofa = next(p for p in flat.layouts[1].placements if p.type == "Sofa")
+    moves = [{"kind": "move", "object": sofa.id, "x": 1.5, "z": 1.5}]
+    assert edit(api, flat, moves).json()["apartment"] == edit(api, flat, moves, room=2).json()["apartment"]
 
 
 def test_both_or_neither_value_is_a_422(api, kitchen):
@@ -243,7 +254,7 @@ def test_the_cli_carries_an_object_into_another_room(flat, tmp_path, capsys):
     folder = tmp_path / "flat"
     write_apartment(flat, folder)
     table = next(o for o in flat.plans[0].objects if o.holds)
-    assert main(["edit", str(folder), "--room", "1", "--move", table.id, "2.0", "2.5", "--to-room", "2"]) == 0
+    assert main(["edit", str(folder), "--move", table.id, "2.0", "2.5", "--to-room", "2"]) == 0  # its room: 1
     edited = Apartment.model_validate_json((folder / "apartment.json").read_text())
     new_id = "r2-" + table.id.split("-", 1)[1]
     assert any(p["id"] == new_id for p in json.loads(next(folder.glob("rooms/2-*/layout.json")).read_text())[
