@@ -97,8 +97,8 @@ def generated_seed(scene: Scene) -> int:
 def apply_edits(pipeline: Pipeline, value: Scene | Apartment, edits: list[EditStep], room: int | None = None,
                 seed: int | None = None, solver: str | None = None) -> Edited:
     """`edits` in order on the scene or on room `room` of the apartment (left out: the room of the object the first
-    edit names; after a carry, the room the object went to); `seed`: the one it was generated with if left out. Raises EditError naming the edit that does not fit;
-    nothing is changed then."""
+    edit names; after a carry, the room the object went to); `seed`: the one it was generated with if left out.
+    Raises EditError naming the edit that does not fit; nothing is changed then."""
     if isinstance(value, Apartment) and room is None:
         room = _room_named(value, edits[0]) if edits else None
     gen = room_of(value, room)
