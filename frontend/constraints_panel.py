@@ -12,8 +12,8 @@ from dataclasses import replace
 
 from app.pipeline import kept_before_edit
 from models.constraints import GLOBALS, RELATIONS, Constraint, read_constraints, write_constraints
+from models.placement.problem import plan_constraints
 from models.values.edit import Edit
-from models.world import catalogue
 
 
 class _Rejected(Exception):
@@ -56,9 +56,7 @@ class ConstraintsPanel:
         gen = self.session.state.gen
         if gen is None or self.object.value not in {o.id for o in gen.plan.objects}:
             return
-        cs = read_constraints(gen.plan.constraints, [o.id for o in gen.plan.objects],
-                              lambda oid: catalogue().default_placement(gen.plan.object(oid).type)
-                              if gen.plan.object(oid).type in catalogue() else "edge")
+        cs = plan_constraints(gen.plan)
         oc = cs.objects[self.object.value]
         items = [f"- `{oc.placement}`"] + [f"- `{c.name}` → `{c.target}`" for c in oc.relations]
         self.listing.content = f"**{oc.object_id}**\n\n" + "\n".join(items)

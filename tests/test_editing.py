@@ -152,8 +152,11 @@ def test_an_apartment_edit_without_a_room_is_in_the_room_of_the_object_it_names(
     assert edit(api, flat, moves).json()["apartment"] == edit(api, flat, moves, room=2).json()["apartment"]
 
 
-def test_both_or_neither_value_is_a_422(api, kitchen):
+def test_both_or_neither_value_is_a_422(api, kitchen, flat):
     r = api.post("/edit", json={"edits": [{"kind": "constraints", "text": ""}]})
+    assert r.status_code == 422 and "exactly one" in r.text
+    both = {"scene": json.loads(kitchen.model_dump_json()), "apartment": json.loads(flat.model_dump_json())}
+    r = api.post("/edit", json={**both, "edits": [{"kind": "constraints", "text": ""}]})
     assert r.status_code == 422 and "exactly one" in r.text
 
 

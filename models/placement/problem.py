@@ -21,6 +21,15 @@ def time_budget(plan: ConstraintPlan, given: float | None = None) -> float:
     return given if given is not None else PER_OBJECT_BUDGET_S * max(len(plan.objects), 1)
 
 
+def plan_constraints(plan: ConstraintPlan) -> ConstraintSet:
+    """A plan's constraint text read for its objects; an object without a line gets its type's default placement."""
+    cat = catalogue()
+    types = {o.id: o.type for o in plan.objects}
+    return read_constraints(plan.constraints, list(types),
+                            default_placement=lambda oid: cat.default_placement(types[oid]) if types[oid] in cat
+                            else "edge")
+
+
 @dataclass
 class PlacementProblem:
     plan: ConstraintPlan
@@ -40,10 +49,7 @@ class PlacementProblem:
         """`fixed`: poses to keep as they are (a designer re-plans from an edited point onwards); `first`: ids to
         place as early as their targets allow (models.placement.reorder)."""
         cat = catalogue()
-        types = {o.id: o.type for o in plan.objects}
-        constraints = read_constraints(
-            plan.constraints, [o.id for o in plan.objects],
-            default_placement=lambda oid: cat.default_placement(types[oid]) if types[oid] in cat else "edge")
+        constraints = plan_constraints(plan)
         room = plan.room
         impossible, feasible = [], []
         for o in plan.objects:

@@ -12,7 +12,7 @@ from __future__ import annotations
 import re
 
 from models.constraints.holodeck_text import without_object
-from models.placement import PlacementProblem
+from models.placement.problem import plan_constraints
 from models.scene.apartment import assemble_apartment
 from models.values import Placement, RoomPlan
 from models.values.apartment import Apartment
@@ -68,7 +68,7 @@ def carry(apartment: Apartment, object_id: str, to: int, x: float, z: float, rot
     arrived = next(o for o in room_plans[to].objects if o.id == new_id)
 
     source, dest = apartment.plans[k], apartment.plans[to]
-    placement = PlacementProblem.from_plan(source).constraints.objects[object_id].placement
+    placement = plan_constraints(source).objects[object_id].placement
     plans = list(apartment.plans)
     plans[k] = source.model_copy(update={"objects": [o for o in source.objects if o.id != object_id],
                                          "constraints": without_object(source.constraints, object_id)})
