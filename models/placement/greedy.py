@@ -285,6 +285,8 @@ def place_stepwise(plan: ConstraintPlan, rng: np.random.Generator, choose: Choos
             solved = ep  # each restart shares its plan-only parts (`Episode`'s `shares`)
             ep = restarted(ep, lambda salt, seen: _solved(plan, salted(start, salt), drawn(choose), fixed, seen,
                                                           repair, keep_reach, solved), observer)
+            from models.placement.exact_finish import finished_exactly
+            ep = finished_exactly(ep, int(copy.deepcopy(start).integers(2**31)), observer)
     return ep
 
 

@@ -1,0 +1,75 @@
+"""Finishing with an exact solve where a constraint stays broken (models.placement.exact_finish): in the iTHOR bedroom
+FloorPlan313 Z3's whole-room layout meets the constraint Plan2Place's repairs leave broken, at a lower energy, and is
+shown as steps after the episode's; a layout that is not better is never kept; where an object is left out, nothing is
+broken or the room is larger than `MAX_OBJECTS`, Z3 never runs; a designer's fixed object stays where it is."""
+
+import numpy as np
+import pytest
+
+from models.datasets import load_dataset
+from models.placement import exact_finish
+from models.placement.exact_finish import EXACT, finished_exactly, wanted
+from models.placement.greedy import Episode
+from models.placement.plan2place.policy import place, shipped_policy, shipped_weights
+from models.placement.polish import broken
+from episode_support import judged
+
+HUMAN = {r.plan.id: r.plan for r in load_dataset("human")}
+BEDROOM = "human-FloorPlan313"  # seed 0: one constraint broken after every repair; Z3 meets them all
+
+
+def solved(plan, seed: int, observer=None, fixed=None) -> Episode:
+    return place(shipped_policy(), plan, np.random.default_rng(seed), shipped_weights().use_global, fixed, observer)
+
+
+def without(plan, seed: int, monkeypatch, fixed=None) -> Episode:
+    with monkeypatch.context() as m:
+        m.setattr(exact_finish, "MAX_OBJECTS", 0)
+        return solved(plan, seed, fixed=fixed)
+
+
+def test_the_exact_solve_meets_the_constraint_the_repairs_left_broken(monkeypatch):
+    plan, records = HUMAN[BEDROOM], []
+    first, kept = without(plan, 0, monkeypatch), solved(plan, 0, records.append)
+    assert broken(first) and not broken(kept)
+    (before, energy, out), (after, new_energy, new_out) = judged(plan, first), judged(plan, kept)
+    assert after.constraint_satisfaction == 1 > before.constraint_satisfaction
+    assert new_energy < energy and new_out == out == 0 and after.cnt == 1 and after.collisions == after.oob == 0
+    # the episode's steps, then the exact layout's, one per object, the first emptying the room
+    start = next(k for k, r in enumerate(records) if r.why == EXACT)
+    assert records[start].restart and [r.why for r in records[start:]] == [EXACT] * len(plan.objects)
+    assert {r.object_id: (r.x, r.z, r.rotation) for r in records[start:]} == \
+        {p.id: (p.x, p.z, p.rotation) for p in kept.placed}
+
+
+def test_a_layout_no_lower_in_energy_is_not_kept(monkeypatch):
+    plan = HUMAN[BEDROOM]
+    first = without(plan, 0, monkeypatch)
+    own = first.layout("z3", 0, 0.0)  # Z3 answering with the episode's own layout: the same energy
+    monkeypatch.setattr("models.placement.smt.Z3Solver.solve", lambda *a, **k: own)
+    assert wanted(first) and finished_exactly(first, 0) is first
+
+
+@pytest.mark.parametrize("why", ["left out", "nothing broken", "too many"])
+def test_z3_runs_only_where_every_object_is_placed_a_constraint_is_broken_and_the_room_is_small(why, monkeypatch):
+    plan = HUMAN[BEDROOM]
+    ep = without(plan, 0, monkeypatch)
+    if why == "left out":
+        ep.failed[ep.placed[0].id] = "for the test"
+    elif why == "nothing broken":
+        ep = without(plan, 1, monkeypatch)
+    else:
+        monkeypatch.setattr(exact_finish, "MAX_OBJECTS", len(plan.objects) - 1)
+    assert not wanted(ep)
+    monkeypatch.setattr("models.placement.smt.Z3Solver.solve", lambda *a, **k: pytest.fail("Z3 ran"))
+    assert finished_exactly(ep, 0) is ep
+
+
+def test_a_fixed_object_stays_where_the_designer_put_it(monkeypatch):
+    plan = HUMAN[BEDROOM]
+    first = without(plan, 0, monkeypatch)
+    bed = next(p for p in first.placed if p.id.startswith("bed"))
+    fixed = {bed.id: (bed.x, bed.z, bed.rotation)}
+    kept = solved(plan, 0, fixed=fixed)
+    assert next(p for p in kept.placed if p.id == bed.id).x == bed.x
+    assert judged(plan, kept)[1] <= judged(plan, without(plan, 0, monkeypatch, fixed))[1] + 1e-9
