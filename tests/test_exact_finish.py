@@ -73,3 +73,16 @@ def test_a_fixed_object_stays_where_the_designer_put_it(monkeypatch):
     kept = solved(plan, 0, fixed=fixed)
     assert next(p for p in kept.placed if p.id == bed.id).x == bed.x
     assert judged(plan, kept)[1] <= judged(plan, without(plan, 0, monkeypatch, fixed))[1] + 1e-9
+
+
+def test_a_layout_that_moves_a_fixed_object_is_not_kept(monkeypatch):
+    """Where the kept poses cannot be completed, the Z3 placer places every object afresh: not a finish to keep."""
+    plan = HUMAN[BEDROOM]
+    first = without(plan, 0, monkeypatch)
+    bed = next(p for p in first.placed if p.id.startswith("bed"))
+    first.problem.fixed[bed.id] = (bed.x, bed.z, bed.rotation)
+    assert wanted(first)
+    z3 = solved(plan, 1).layout("z3", 0, 0.0)  # every constraint met, the bed elsewhere
+    assert (z3.placement(bed.id).x, z3.placement(bed.id).z) != (bed.x, bed.z)
+    monkeypatch.setattr("models.placement.smt.Z3Solver.solve", lambda *a, **k: z3)
+    assert finished_exactly(first, 0) is first

@@ -40,11 +40,11 @@ def finished_exactly(ep: Episode, seed: int, observer: StepObserver | None = Non
     from models.placement.smt import Z3Solver  # z3 loads only where it runs
     problem = ep.problem
     layout = Z3Solver(BUDGET_S * len(problem.plan.objects)).solve(problem.plan, seed, fixed=problem.fixed or None)
-    if layout.unplaced:
-        return ep
-    poses = {p.id: p for p in layout.placements}
+    poses = {p.id: (p.x, p.z, p.rotation) for p in layout.placements}
+    if layout.unplaced or not all(_same(poses[oid], pose) for oid, pose in problem.fixed.items()):
+        return ep  # (where the kept poses cannot be completed, the Z3 placer places every object afresh)
     new = ep.fork()
-    new.placed = [ep.scorer.place(o, poses[o.id].x, poses[o.id].z, poses[o.id].rotation) for o in ep.order]
+    new.placed = [ep.scorer.place(o, *problem.fixed.get(o.id, poses[o.id])) for o in ep.order]
     new.repaired = None
     now, then = Standing(new), Standing(ep)
     if now.out > then.out or now.energy >= then.energy:
@@ -55,3 +55,9 @@ def finished_exactly(ep: Episode, seed: int, observer: StepObserver | None = Non
         observer(PlacementStep(p.id, p.x, p.z, p.rotation, np.empty((0, 3)), np.empty(0), dict(terms), EXACT,
                                restart=k == 0))
     return new
+
+
+def _same(a: tuple[float, float, float], b: tuple[float, float, float]) -> bool:
+    """The same pose, but for the layout's rounding."""
+    turn = (a[2] - b[2]) % 360
+    return abs(a[0] - b[0]) < 1e-3 and abs(a[1] - b[1]) < 1e-3 and min(turn, 360 - turn) < 1e-6
