@@ -39,7 +39,7 @@ from models.checks import Finding, run_checks
 from models.energy.exact import layout_energy
 from models.language import InstructionError
 from models.metrics.realism import checks as habit_checks
-from models.placement import ALL_OBJECTS, DEFAULT_SOLVER, SOLVERS, PlacementStep
+from models.placement import ALL_OBJECTS, DEFAULT_SOLVER, EXACT_FINISH, SOLVERS, PlacementStep
 from models.values import Scene, TaskGraph
 from models.values.apartment import APARTMENT
 from models.values.edit import Edit
@@ -102,8 +102,9 @@ class StudioSession:
                                       "2-5 rooms drawn from the task")
             self.seed = gui.add_number("Seed", 0, min=0, step=1)
             self.solver = gui.add_dropdown("Solver", tuple(sorted(SOLVERS)), initial_value=DEFAULT_SOLVER,
-                                           hint=f"{DEFAULT_SOLVER} may leave out an object that would cut a task object "
-                                           f"off from the robot; {ALL_OBJECTS} places every object it can")
+                                           hint=f"{DEFAULT_SOLVER} may leave out an object that would cut a task "
+                                           f"object off from the robot; {ALL_OBJECTS} places every object it can; "
+                                           f"{EXACT_FINISH} tries Z3 over a small room where a constraint stays broken")
             self.generate_button = gui.add_button("Generate", color="green")
             self.generate_button.on_click(lambda _: self.generate())
             self.graph_md = gui.add_markdown("")

@@ -1,4 +1,5 @@
-"""Finishing with an exact solve where a constraint stays broken (models.placement.exact_finish): in the iTHOR bedroom
+"""Finishing with an exact solve where a constraint stays broken (models.placement.exact_finish, the solver
+`plan2place_exact`; the default does not): in the iTHOR bedroom
 FloorPlan313 Z3's whole-room layout meets the constraint Plan2Place's repairs leave broken, at a lower energy, and is
 shown as steps after the episode's; a layout that is not better is never kept; where an object is left out, nothing is
 broken or the room is larger than `MAX_OBJECTS`, Z3 never runs; a designer's fixed object stays where it is."""
@@ -7,7 +8,7 @@ import numpy as np
 import pytest
 
 from models.datasets import load_dataset
-from models.placement import exact_finish
+from models.placement import DEFAULT_SOLVER, EXACT_FINISH, exact_finish, get_solver
 from models.placement.exact_finish import EXACT, finished_exactly, wanted
 from models.placement.greedy import Episode
 from models.placement.plan2place.policy import place, shipped_policy, shipped_weights
@@ -18,19 +19,19 @@ HUMAN = {r.plan.id: r.plan for r in load_dataset("human")}
 BEDROOM = "human-FloorPlan313"  # seed 0: one constraint broken after every repair; Z3 meets them all
 
 
-def solved(plan, seed: int, observer=None, fixed=None) -> Episode:
-    return place(shipped_policy(), plan, np.random.default_rng(seed), shipped_weights().use_global, fixed, observer)
+def solved(plan, seed: int, observer=None, fixed=None, exact: bool = True) -> Episode:
+    return place(shipped_policy(), plan, np.random.default_rng(seed), shipped_weights().use_global, fixed, observer,
+                 exact=exact)
 
 
-def without(plan, seed: int, monkeypatch, fixed=None) -> Episode:
-    with monkeypatch.context() as m:
-        m.setattr(exact_finish, "MAX_OBJECTS", 0)
-        return solved(plan, seed, fixed=fixed)
+def without(plan, seed: int, fixed=None) -> Episode:
+    """Plan2Place's episode as the default solver places it (no exact finish)."""
+    return solved(plan, seed, fixed=fixed, exact=False)
 
 
-def test_the_exact_solve_meets_the_constraint_the_repairs_left_broken(monkeypatch):
+def test_the_exact_solve_meets_the_constraint_the_repairs_left_broken():
     plan, records = HUMAN[BEDROOM], []
-    first, kept = without(plan, 0, monkeypatch), solved(plan, 0, records.append)
+    first, kept = without(plan, 0), solved(plan, 0, records.append)
     assert broken(first) and not broken(kept)
     (before, energy, out), (after, new_energy, new_out) = judged(plan, first), judged(plan, kept)
     assert after.constraint_satisfaction == 1 > before.constraint_satisfaction
@@ -44,7 +45,7 @@ def test_the_exact_solve_meets_the_constraint_the_repairs_left_broken(monkeypatc
 
 def test_a_layout_no_lower_in_energy_is_not_kept(monkeypatch):
     plan = HUMAN[BEDROOM]
-    first = without(plan, 0, monkeypatch)
+    first = without(plan, 0)
     own = first.layout("z3", 0, 0.0)  # Z3 answering with the episode's own layout: the same energy
     monkeypatch.setattr("models.placement.smt.Z3Solver.solve", lambda *a, **k: own)
     assert wanted(first) and finished_exactly(first, 0) is first
@@ -53,11 +54,11 @@ def test_a_layout_no_lower_in_energy_is_not_kept(monkeypatch):
 @pytest.mark.parametrize("why", ["left out", "nothing broken", "too many"])
 def test_z3_runs_only_where_every_object_is_placed_a_constraint_is_broken_and_the_room_is_small(why, monkeypatch):
     plan = HUMAN[BEDROOM]
-    ep = without(plan, 0, monkeypatch)
+    ep = without(plan, 0)
     if why == "left out":
         ep.failed[ep.placed[0].id] = "for the test"
     elif why == "nothing broken":
-        ep = without(plan, 1, monkeypatch)
+        ep = without(plan, 1)
     else:
         monkeypatch.setattr(exact_finish, "MAX_OBJECTS", len(plan.objects) - 1)
     assert not wanted(ep)
@@ -65,20 +66,20 @@ def test_z3_runs_only_where_every_object_is_placed_a_constraint_is_broken_and_th
     assert finished_exactly(ep, 0) is ep
 
 
-def test_a_fixed_object_stays_where_the_designer_put_it(monkeypatch):
+def test_a_fixed_object_stays_where_the_designer_put_it():
     plan = HUMAN[BEDROOM]
-    first = without(plan, 0, monkeypatch)
+    first = without(plan, 0)
     bed = next(p for p in first.placed if p.id.startswith("bed"))
     fixed = {bed.id: (bed.x, bed.z, bed.rotation)}
     kept = solved(plan, 0, fixed=fixed)
     assert next(p for p in kept.placed if p.id == bed.id).x == bed.x
-    assert judged(plan, kept)[1] <= judged(plan, without(plan, 0, monkeypatch, fixed))[1] + 1e-9
+    assert judged(plan, kept)[1] <= judged(plan, without(plan, 0, fixed))[1] + 1e-9
 
 
 def test_a_layout_that_moves_a_fixed_object_is_not_kept(monkeypatch):
     """Where the kept poses cannot be completed, the Z3 placer places every object afresh: not a finish to keep."""
     plan = HUMAN[BEDROOM]
-    first = without(plan, 0, monkeypatch)
+    first = without(plan, 0)
     bed = next(p for p in first.placed if p.id.startswith("bed"))
     first.problem.fixed[bed.id] = (bed.x, bed.z, bed.rotation)
     assert wanted(first)
@@ -86,3 +87,12 @@ def test_a_layout_that_moves_a_fixed_object_is_not_kept(monkeypatch):
     assert (z3.placement(bed.id).x, z3.placement(bed.id).z) != (bed.x, bed.z)
     monkeypatch.setattr("models.placement.smt.Z3Solver.solve", lambda *a, **k: z3)
     assert finished_exactly(first, 0) is first
+
+
+def test_the_solver_plan2place_exact_finishes_so_and_the_default_does_not():
+    from models.metrics import scene_metrics
+    plan = HUMAN[BEDROOM]
+    exact, default = (get_solver(name).solve(plan, seed=0) for name in (EXACT_FINISH, DEFAULT_SOLVER))
+    assert exact.solver == EXACT_FINISH
+    met = [scene_metrics(plan, layout).constraint_satisfaction for layout in (exact, default)]
+    assert met[0] == 1 > met[1]

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from models.datasets import load_dataset
-from models.placement import exact_finish, reorder
+from models.placement import reorder
 from models.placement.greedy import Episode
 from models.placement.plan2place.policy import place, shipped_policy, shipped_weights
 from models.placement.polish import ALLOWANCE
@@ -19,13 +19,12 @@ ROOM, SEED = "human-FloorPlan313", 1  # Plan2Place leaves the chair out of the m
 
 
 def episode(plan, rounds: int, observer=None, seed: int = SEED) -> Episode:
-    """Plan2Place's episode of `plan`, solving again at most `rounds` times, without the exact finish (which meets
-    the constraint in this room too, after it)."""
-    shipped, reorder.ROUNDS, exact_finish.MAX_OBJECTS = exact_finish.MAX_OBJECTS, rounds, 0
+    """Plan2Place's episode of `plan`, solving again at most `rounds` times."""
+    reorder.ROUNDS = rounds
     try:
         return place(shipped_policy(), plan, np.random.default_rng(seed), shipped_weights().use_global, None, observer)
     finally:
-        reorder.ROUNDS, exact_finish.MAX_OBJECTS = 1, shipped
+        reorder.ROUNDS = 1
 
 
 def test_solving_again_meets_more_constraints_within_the_allowance_and_shows_its_steps_after_the_first():

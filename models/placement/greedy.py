@@ -269,14 +269,17 @@ def tie_broken(opts: Options, rng: np.random.Generator) -> np.ndarray:
 
 
 def place_stepwise(plan: ConstraintPlan, rng: np.random.Generator, choose: Choose, fixed: Fixed | None = None,
-                   observer: StepObserver | None = None, repair: bool = True, keep_reach: bool = True) -> Episode:
+                   observer: StepObserver | None = None, repair: bool = True, keep_reach: bool = True,
+                   exact: bool = False) -> Episode:
     """One episode of a step-wise placer (greedy, look-ahead, Plan2Place): at each step with a legal candidate,
     `choose(episode, options, rng)` gives (pick among the feasible candidates, probabilities for the heat-map, the
     step's reason); each step is observed; then, with `repair`, the repairs, the episode solved again with the
     objects of broken constraints first, if that is better (models.placement.reorder), and, with `keep_reach`,
     solved again with every task object kept reachable, if that is better (models.placement.reach_kept); each from
     the same random state. Where that leaves an object out, with `repair`, all of it again from another random
-    state, if that is better (models.placement.restarts). All of it on one BLAS thread (models.placement.blas)."""
+    state, if that is better (models.placement.restarts). With `exact` too, Z3 over the whole room where a constraint
+    stays broken in a small room, if that is better (models.placement.exact_finish). All of it on one BLAS thread
+    (models.placement.blas)."""
     with blas.one_blas_thread():
         start = copy.deepcopy(rng)
         ep = _solved(plan, rng, choose, fixed, observer, repair, keep_reach)
@@ -285,6 +288,7 @@ def place_stepwise(plan: ConstraintPlan, rng: np.random.Generator, choose: Choos
             solved = ep  # each restart shares its plan-only parts (`Episode`'s `shares`)
             ep = restarted(ep, lambda salt, seen: _solved(plan, salted(start, salt), drawn(choose), fixed, seen,
                                                           repair, keep_reach, solved), observer)
+        if repair and exact:
             from models.placement.exact_finish import finished_exactly
             ep = finished_exactly(ep, int(copy.deepcopy(start).integers(2**31)), observer)
     return ep

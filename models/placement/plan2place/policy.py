@@ -142,10 +142,10 @@ def shipped_policy() -> NumpyPolicy:
 
 def place(policy: Policy, plan: ConstraintPlan, rng: np.random.Generator, use_global: bool = True,
           fixed: Fixed | None = None, observer: StepObserver | None = None, repair: bool = True,
-          guard: bool = True, keep_reach: bool = True) -> Episode:
+          guard: bool = True, keep_reach: bool = True, exact: bool = False) -> Episode:
     """One deterministic episode: each object at the most probable of its candidates (fixed poses kept; with
     `guard`, the most probable that walls off no task object, `Episode.guarded`), then, with `repair`, the
-    repairs (models.placement.repair; `keep_reach`: `place_stepwise`'s)."""
+    repairs (models.placement.repair; `keep_reach`, `exact`: `place_stepwise`'s)."""
     def choose(ep: Episode, opts: Options, rng: np.random.Generator) -> tuple[int, np.ndarray, str]:
         if opts.obj.id in ep.problem.fixed:
             return 0, np.ones(1), ""
@@ -160,4 +160,4 @@ def place(policy: Policy, plan: ConstraintPlan, rng: np.random.Generator, use_gl
             return guarded, probs, ep.walls_off
         return pick, probs, ""
 
-    return place_stepwise(plan, rng, choose, fixed, observer, repair, keep_reach)
+    return place_stepwise(plan, rng, choose, fixed, observer, repair, keep_reach, exact)

@@ -17,13 +17,15 @@ class Plan2PlaceSolver:
     name = "plan2place"
 
     def __init__(self, policy: Policy | None = None, name: str | None = None, use_global: bool = True,
-                 repair: bool = True, guard: bool = True, keep_reach: bool = True):
+                 repair: bool = True, guard: bool = True, keep_reach: bool = True, exact: bool = False):
         """`policy`: another network's (e.g. `agent.fast_policy` of a checkpoint); the shipped one by default.
         `repair`: finish with the repairs (models.placement.repair); `guard`: the reach guard
         (`Episode.guarded`); `keep_reach`: with the repairs, solve again leaving out what cuts a task object off
-        from the robot, if the energy finds that better (models.placement.reach_kept)."""
+        from the robot, if the energy finds that better (models.placement.reach_kept); `exact`: with the repairs,
+        finish with Z3 over the whole room where a constraint stays broken in a small room, if that is better
+        (models.placement.exact_finish)."""
         self._policy, self._use_global, self.repair, self.guard = policy, use_global, repair, guard
-        self.keep_reach = keep_reach
+        self.keep_reach, self.exact = keep_reach, exact
         if name:
             self.name = name
 
@@ -34,7 +36,7 @@ class Plan2PlaceSolver:
         if policy is None:
             policy, use_global = shipped_policy(), shipped_weights().use_global
         ep = place(policy, plan, np.random.default_rng(seed), use_global, fixed, observer, self.repair, self.guard,
-                   self.keep_reach)
+                   self.keep_reach, self.exact)
         return ep.layout(self.name, seed, time.perf_counter() - start)
 
 

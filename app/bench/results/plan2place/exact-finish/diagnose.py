@@ -1,6 +1,8 @@
 """The exact finish (models.placement.exact_finish) off, and on for rooms of at most 9 or 17 objects to move, on the
 diagnosis plans (20 per set x 2 seeds), Plan2Place and greedy alternating in one process; writes `diagnose.md` and
-`diagnose.json` here:
+`diagnose.json` here. It ran on commit 0ae1f45's code without its `crowded` rule (added after this run), where
+every step-wise placer finished this way; since then only `plan2place_exact` does (check that commit out to run it
+again):
 
     PYTHONPATH=. python app/bench/results/plan2place/exact-finish/diagnose.py [SET ...]
 """

@@ -1,6 +1,8 @@
 """decision.md's gate: Plan2Place and greedy with and without the exact finish (models.placement.exact_finish) on
 fresh plans (tag `exact-finish`: 48 `dense` x 5 seeds, 24 per other set x 2 seeds; `human`: the earlier gates' 24
-rooms x 2 seeds), alternating in one process; writes `runs.json` and `result.md` here.
+rooms x 2 seeds), alternating in one process; writes `runs.json` and `result.md` here. It ran at commit 02f3fad,
+where every step-wise placer finished this way; since then only `plan2place_exact` does (check that commit out to run
+it again):
 
     PYTHONPATH=. python app/bench/results/plan2place/exact-finish/gate.py
 """
