@@ -98,3 +98,17 @@ def test_steps_stream_while_the_placer_runs_and_a_failure_ends_the_stream(api, p
         assert rest == [{"error": "RuntimeError: the placer broke down"}]
     else:
         assert "layout" in rest[-1] and rest[-1]["layout"]["solver"] == "greedy"
+
+
+def test_the_exact_finish_arrives_as_steps_after_the_placers(api):
+    """`plan2place_exact` on the iTHOR bedroom where Plan2Place leaves a constraint broken: Z3's poses come last, one
+    step per object, the first emptying the room, none with candidates (a whole-room solve has no heat-map)."""
+    from models.datasets import load_dataset
+    from models.placement.exact_finish import EXACT
+    bedroom = next(r.plan for r in load_dataset("human") if r.plan.id == "human-FloorPlan313")
+    *steps, last = streamed(api, {"plan": json.loads(bedroom.model_dump_json()), "solver": "plan2place_exact"})
+    exact = [s for s in steps if s["why"] == EXACT]
+    assert len(exact) == len(bedroom.objects) and steps[-len(exact):] == exact and exact[0]["restart"]
+    assert not any(s["restart"] for s in exact[1:]) and all(s["candidates"] == 0 for s in exact)
+    assert {s["object"]: (s["x"], s["z"], s["rotation"]) for s in exact} == \
+        {p["id"]: (p["x"], p["z"], p["rotation"]) for p in last["layout"]["placements"]}
