@@ -27,7 +27,7 @@ from models.planning.floorplan import FloorplanError
 from models.values import ConstraintPlan, Scene
 from models.values.apartment import APARTMENT, Apartment
 from models.values.edit import Edit
-from models.world import normalise_room_type
+from models.world import INFER, requested_room_type
 from studio_db import NotFound, Store
 from studio_db.store import Stored, WrongKind
 
@@ -72,7 +72,7 @@ class PlaceRequest(BaseModel):
 
 
 def _room_type(name: str) -> str:
-    return APARTMENT if is_apartment(name) else normalise_room_type(name)
+    return APARTMENT if is_apartment(name) else requested_room_type(name) or INFER
 
 
 class EditIn(BaseModel):

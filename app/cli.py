@@ -368,7 +368,8 @@ def build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser("generate", help="the whole pipeline -> task_graph, plan, layout, house JSON and GLB",
                        epilog=SOLVER_LIST, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("instruction")
-    p.add_argument("--room-type", required=True, help=room_help + "; or apartment (several rooms joined by doors)")
+    p.add_argument("--room-type", required=True, help=room_help + "; infer (read from the instruction); or apartment "
+                   "(several rooms joined by doors)")
     p.add_argument("--rooms", default=None, help='with --room-type apartment: the rooms, e.g. "kitchen, living room, '
                    'bedroom, bathroom" (at most 8; default: 2-5 rooms chosen from the task and the seed)')
     p.add_argument("--seed", type=int, default=0, help="same seed, same scene")

@@ -28,7 +28,7 @@ from models.scene.apartment import assemble_apartment
 from models.scene.assemble import footprint_boxes
 from models.values import ConstraintPlan, Layout, Placement, RoomPlan, Scene, TaskGraph, Timing
 from models.values.apartment import Apartment
-from models.world import normalise_room_type
+from models.world import requested_room_type
 
 
 @dataclass(frozen=True)
@@ -54,7 +54,8 @@ class Pipeline:
         self.solver = solver
 
     def parse(self, instruction: str, room_type: str | None = None) -> TaskGraph:
-        return self.parser.parse(instruction, room_type)
+        """The task graph; `room_type` None or "infer": the parser infers it from the instruction."""
+        return self.parser.parse(instruction, requested_room_type(room_type))
 
     def place(self, plan: ConstraintPlan, seed: int = 0, solver: str | None = None,
               observer: StepObserver | None = None, keep: Fixed | None = None) -> Layout:
@@ -65,9 +66,9 @@ class Pipeline:
         """`place` as an iterator of its steps (models.placement.stepping); the layout is its `layout` after them."""
         return Stepping(get_solver(solver or self.solver), plan, seed=seed, fixed=keep)
 
-    def generate(self, instruction: str, room_type: str, seed: int = 0, solver: str | None = None,
+    def generate(self, instruction: str, room_type: str | None, seed: int = 0, solver: str | None = None,
                  observer: StepObserver | None = None) -> Generation:
-        graph = self.parse(instruction, normalise_room_type(room_type))
+        graph = self.parse(instruction, room_type)
         return self.generate_from_graph(graph, seed, solver, observer)
 
     def generate_from_graph(self, graph: TaskGraph, seed: int = 0, solver: str | None = None,

@@ -43,7 +43,7 @@ from models.placement import ALL_OBJECTS, DEFAULT_SOLVER, EXACT_FINISH, SOLVERS,
 from models.values import Scene, TaskGraph
 from models.values.apartment import APARTMENT
 from models.values.edit import Edit
-from models.world import ROOM_TYPES
+from models.world import INFER, ROOM_TYPES
 from studio_db import Store
 
 DEFAULT_INSTRUCTION = "Put a chilled bread on the counter"
@@ -97,7 +97,7 @@ class StudioSession:
 
         with tabs.add_tab("Task"):
             self.instruction = gui.add_text("Instruction", DEFAULT_INSTRUCTION)
-            self.room = gui.add_dropdown("Room type", ("infer",) + ROOM_TYPES + (APARTMENT,), initial_value="kitchen")
+            self.room = gui.add_dropdown("Room type", (INFER,) + ROOM_TYPES + (APARTMENT,), initial_value="kitchen")
             self.rooms = gui.add_text("Rooms (apartment)", "", hint="e.g. kitchen, living room, bedroom; empty: "
                                       "2-5 rooms drawn from the task")
             self.seed = gui.add_number("Seed", 0, min=0, step=1)
@@ -188,9 +188,8 @@ class StudioSession:
                 self.progress.content = "⏳ Planning the rooms, the floorplan and placing objects…"
                 self.apartment.generate()
                 return
-            room = None if self.room.value == "infer" else self.room.value
             try:
-                graph = self.pipeline.parse(self.instruction.value, room)
+                graph = self.pipeline.parse(self.instruction.value, self.room.value)
             except (InstructionError, ValueError) as e:
                 self._clear_graph()
                 self.say(f"**Error:** {e}\n\nInstructions are read in English, one task at a time. The task graph "

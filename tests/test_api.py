@@ -133,3 +133,9 @@ def test_place_keeps_the_given_poses_and_names_a_stranger(db_url, solver):
     assert away.status_code == 422 and \
         f"outside the {room['width']} x {room['depth']} m room of plan scene-0: {first['id']} at (-1.5, 1.0)" in away.text
     assert api.post("/place", json={"plan": gen["plan"], "solver": "best"}).status_code == 422
+
+
+def test_generate_infers_the_room_type_when_asked(db_url):
+    api = client(db_url)
+    gen = api.post("/generate", json={"instruction": "Look at the book under the lamp", "room_type": "infer"})
+    assert gen.status_code == 200 and gen.json()["task_graph"]["room_type"] == "bedroom"

@@ -248,3 +248,10 @@ def test_bench_placement_through_worker_processes_gives_the_same_rows(tmp_path):
     rows = [[{k: v for k, v in r.items() if k not in clock} for r in json.loads((tmp_path / d / "results.json").read_text())]
             for d in "ab"]
     assert rows[0] == rows[1] and len(rows[0]) == 4
+
+
+def test_a_line_may_ask_for_its_room_type_to_be_inferred(tmp_path):
+    source = tmp_path / "in.jsonl"
+    source.write_text(json.dumps({"instruction": "Look at the book under the lamp", "room_type": "infer"}) + "\n")
+    tasks, bad = read_tasks(source, tmp_path)
+    assert len(tasks) == 1 and not bad

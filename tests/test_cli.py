@@ -172,3 +172,14 @@ def test_parse_policy_picks_how_rules_and_model_combine(capsys, monkeypatch):
     assert code == 2 and "--policy is for --parser combined, not rules" in err
     code, _, err = run(["parse", "Put a mug in the sink", "--policy", "best"], capsys)
     assert code == 2 and "invalid choice: 'best'" in err
+
+
+def test_the_room_type_inferred_from_the_instruction(tmp_path, capsys):
+    """`--room-type infer` (as the studio's Room type dropdown offers): the parser reads the room from the task."""
+    code, out, _ = run(["parse", "Look at the book under the lamp", "--room-type", "Infer"], capsys)
+    assert code == 0 and json.loads(out)["room_type"] == "bedroom"
+    code, _, _ = run(["generate", "Put a chilled bread on the counter", "--room-type", "infer", "--out",
+                      str(tmp_path / "g")], capsys)
+    graph = json.loads((tmp_path / "g" / "task_graph.json").read_text())
+    plan = json.loads((tmp_path / "g" / "plan.json").read_text())
+    assert code == 0 and graph["room_type"] == "kitchen" and plan["room"]["type"] == "kitchen"

@@ -32,7 +32,7 @@ from pydantic import BaseModel, ConfigDict, ValidationError, field_validator
 from app.batch.executors import Done, Executor
 from app.batch.studio import store_scene, stored_names, studio_name
 from models.placement.base import DEFAULT_SOLVER, SOLVERS, UnknownSolver
-from models.world.rooms import normalise_room_type
+from models.world.rooms import requested_room_type
 
 MARKER = "DONE.json"
 RESULTS = "results.jsonl"
@@ -60,7 +60,7 @@ class SceneSpec(BaseModel):
     @field_validator("room_type")
     @classmethod
     def _known_room_type(cls, room_type: str) -> str:
-        normalise_room_type(room_type)  # refused here, before a worker spends time on the line
+        requested_room_type(room_type)  # refused here, before a worker spends time on the line
         return room_type
 
     @field_validator("solver")

@@ -16,6 +16,15 @@ class UnknownRoomType(InputError):
         super().__init__(f"unknown room type {given!r}; expected one of: {', '.join(ROOM_TYPES)}")
 
 
+INFER = "infer"  # asked for instead of a room type: the parser infers it from the instruction
+
+
+def requested_room_type(name: str | None) -> str | None:
+    """A room type as the studio, the API and the CLI take it: None or `INFER` for the parser to infer it from the
+    instruction, else `normalise_room_type`'s."""
+    return None if name is None or name.strip().lower() == INFER else normalise_room_type(name)
+
+
 def normalise_room_type(name: str) -> str:
     """`Living_Room`, `livingroom` and `living room` all read as `living room`."""
     key = re.sub(r"[\s_\-]+", "", name or "").lower()
