@@ -26,7 +26,14 @@ MAX_EDITS = 100  # edits in one request
 MAX_CONSTRAINT_TEXT = 100_000  # characters of an edited constraint text
 
 
-class Move(BaseModel):
+class Step(BaseModel):
+    """What every edit has: in an apartment, the number of the `room` it edits (from 1); left out, the room of the
+    edit before it (the first: the request's room)."""
+
+    room: int | None = Field(None, ge=1, examples=[None])
+
+
+class Move(Step):
     """One object to a new pose, everything else as it was (a drag or a typed pose in the studio). `x`, `z` in the
     frame of the room edited (its layout's); `rotation` in degrees, the object's own when left out. In an apartment,
     `to_room` (a room number) carries the object into that room, `x`, `z` then in its frame (models.scene.carry)."""
@@ -39,14 +46,14 @@ class Move(BaseModel):
     to_room: int | None = Field(None, ge=1)
 
 
-class Constraints(BaseModel):
+class Constraints(Step):
     """The room's constraint text edited (Holodeck's lines): placed again from the first object it changes."""
 
     kind: Literal["constraints"] = "constraints"
     text: str = Field(max_length=MAX_CONSTRAINT_TEXT, examples=["fridge-0 | edge | near, countertop-0"])
 
 
-class ReplaceAround(BaseModel):
+class ReplaceAround(Step):
     """The named objects stay where they are; the placer places the others again around them (the studio's
     *Re-place the rest*)."""
 
@@ -68,23 +75,24 @@ class EditError(ValueError):
 @dataclass(frozen=True)
 class Edited:
     value: Scene | Apartment  # the scene, or the apartment with the room edited put back
-    room: Generation  # the room edited, in its own frame
+    room: Generation  # the room edited last, in its own frame
     log: list[Edit]  # one row per edit, as the studio stores them with a version
     findings: list[Finding]  # the checks after the edits (a single room's against the scene before them)
 
 
-def room_of(value: Scene | Apartment, room: int | None) -> Generation:
-    """The room to edit: the scene, or room number `room` (from 1, as `room|N`) of an apartment."""
+def room_of(value: Scene | Apartment, room: int | None, loc: tuple = ("room",)) -> Generation:
+    """The room to edit: the scene, or room number `room` (from 1, as `room|N`) of an apartment (`loc`: the field
+    that gave it)."""
     if isinstance(value, Scene):
         if room is not None:
-            raise EditError(("room",), f"scene {value.id} is a single room: leave room out")
+            raise EditError(loc, f"scene {value.id} is a single room: leave room out")
         try:
             return generation_of(value)
         except ValueError as e:
             raise EditError(("scene",), str(e)) from e
     if room is None or not 1 <= room <= len(value.plans):
         given = "none was given" if room is None else f"not {room}"
-        raise EditError(("room",), f"apartment {value.id} has rooms 1-{len(value.plans)}: say which one to edit "
+        raise EditError(loc, f"apartment {value.id} has rooms 1-{len(value.plans)}: say which one to edit "
                                    f"({given})")
     return room_generation(value, room - 1)
 
@@ -97,14 +105,21 @@ def generated_seed(scene: Scene) -> int:
 def apply_edits(pipeline: Pipeline, value: Scene | Apartment, edits: list[EditStep], room: int | None = None,
                 seed: int | None = None, solver: str | None = None) -> Edited:
     """`edits` in order on the scene or on room `room` of the apartment (left out: the room of the object the first
-    edit names; after a carry, the room the object went to); `seed`: the one it was generated with if left out.
-    Raises EditError naming the edit that does not fit; nothing is changed then."""
-    if isinstance(value, Apartment) and room is None:
-        room = _room_named(value, edits[0]) if edits else None
-    gen = room_of(value, room)
+    edit names; after a carry, the room the object went to; an edit's own `room` switches to that one); `seed`: the one
+    it was generated with if left out. Raises EditError naming the edit that does not fit; nothing is changed then."""
+    loc = ("room",)
+    if isinstance(value, Apartment) and room is None and edits:
+        first = edits[0]
+        room, loc = (first.room, ("edits", 0, "room")) if first.room else (_room_named(value, first), loc)
+    gen = room_of(value, room, loc)
     seed = generated_seed(gen.scene) if seed is None else seed
     before, log = gen, []
     for i, edit in enumerate(edits):
+        if edit.room is not None and edit.room != room:
+            if isinstance(value, Scene):
+                raise EditError(("edits", i, "room"), f"scene {value.id} is a single room: leave room out")
+            value, room = with_room(value, room - 1, gen.plan, gen.layout, seed), edit.room  # the edits so far kept
+            gen = room_of(value, room, ("edits", i, "room"))
         where = room_label(value, room - 1) if isinstance(value, Apartment) else f"scene {value.id}"
         if isinstance(edit, Move) and edit.to_room is not None:
             if isinstance(value, Scene):

@@ -152,6 +152,36 @@ def test_an_apartment_edit_without_a_room_is_in_the_room_of_the_object_it_names(
     assert edit(api, flat, moves).json()["apartment"] == edit(api, flat, moves, room=2).json()["apartment"]
 
 
+def test_edits_of_several_rooms_in_one_request_each_name_their_room(api, flat):
+    """An edit's own `room` switches to that room, the edits before it kept in theirs: the same apartment as one
+    request per room."""
+    fridge = next(p for p in flat.layouts[0].placements if p.type == "Fridge")
+    sofa = next(p for p in flat.layouts[1].placements if p.type == "Sofa")
+    to_fridge = {"kind": "move", "object": fridge.id, "x": 1.0, "z": 1.0}
+    to_sofa = {"kind": "move", "object": sofa.id, "x": 1.5, "z": 1.5}
+    both = edit(api, flat, [{**to_fridge, "room": 1}, {**to_sofa, "room": 2}])
+    assert both.status_code == 200, both.text
+    first = Apartment.model_validate(edit(api, flat, [to_fridge], room=1).json()["apartment"])
+    then = edit(api, first, [to_sofa], room=2).json()["apartment"]
+    assert both.json()["apartment"] == then and [e["target"] for e in both.json()["edits"]] == [fridge.id, sofa.id]
+    # without a room of its own, an edit is in the room of the one before it: the sofa is not in the kitchen
+    r = edit(api, flat, [{**to_fridge, "room": 1}, to_sofa])
+    assert r.status_code == 422 and r.json()["detail"][0]["loc"] == ["body", "edits", 1, "object"]
+
+
+@pytest.mark.parametrize("value,edits,field,words", [
+    ("flat", [{"kind": "constraints", "text": "", "room": 3}], ["edits", 0, "room"], "not 3"),
+    ("flat", [{"kind": "constraints", "text": "", "room": 1}, {"kind": "constraints", "text": "", "room": 4}],
+     ["edits", 1, "room"], "not 4"),
+    ("kitchen", [{"kind": "constraints", "text": "", "room": 1}], ["edits", 0, "room"], "single room"),
+])
+def test_an_edits_room_that_does_not_fit_is_a_422_naming_it(api, kitchen, flat, value, edits, field, words):
+    r = edit(api, {"flat": flat, "kitchen": kitchen}[value], edits)
+    assert r.status_code == 422
+    d = r.json()["detail"][0]
+    assert d["loc"][1:] == field and words in d["msg"], d
+
+
 def test_both_or_neither_value_is_a_422(api, kitchen, flat):
     r = api.post("/edit", json={"edits": [{"kind": "constraints", "text": ""}]})
     assert r.status_code == 422 and "exactly one" in r.text
