@@ -152,10 +152,13 @@ class ApartmentMode:
         return hr.x, hr.z
 
     def focus_on(self, object_id: str) -> None:
-        """Make the room of `object_id` the one edited (a click on one of its objects); not while an edit of the
-        room edited now is being placed, which goes back into that room."""
+        """Make the room of `object_id` the one edited (a click on one of its objects)."""
+        self.focus_room(int(self.room_of(object_id)[1:]) - 1)
+
+    def focus_room(self, k: int) -> None:
+        """Make room `k` (from 0) the one edited; not while an edit of the room edited now is being placed, which
+        goes back into that room."""
         s = self.session
-        k = int(self.room_of(object_id)[1:]) - 1
         if k == s.state.values.room or s.state.busy:
             return
         gen = room_generation(self.current, k, s.state.gen.task_graph)  # the graph's corrections kept

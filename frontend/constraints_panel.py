@@ -24,6 +24,9 @@ class ConstraintsPanel:
     def __init__(self, session, gui):
         self.session = session
         self.scope = gui.add_markdown("")
+        self.room = gui.add_dropdown("Room edited", ("-",), visible=False, hint="in an apartment: the room whose "
+                                     "constraints, drags and re-places these tools edit")
+        self.room.on_update(self._choose_room)
         self.object = gui.add_dropdown("Object", ("-",))
         self.object.on_update(lambda _: self.show())
         self.listing = gui.add_markdown("")
@@ -40,12 +43,28 @@ class ConstraintsPanel:
         """Follow the scene on screen: its objects in the dropdowns, its plan's text, the selected object's list."""
         s = self.session
         plan = s.state.gen.plan
+        apartment = s.apartment.current
         self.scope.content = (f"Editing **{s.apartment.label()}** of the apartment; a click on an object in another "
-                              "room edits that room." if s.apartment.current is not None else "")
+                              "room edits that room." if apartment is not None else "")
+        if apartment is not None:
+            self.room.options = tuple(s.apartment.label(k) for k in range(len(apartment.plans)))
+            self.room.value = s.apartment.label()
+        self.room.visible = apartment is not None
         ids = tuple(o.id for o in plan.objects) or ("-",)
         self.object.options = self.target.options = ids
         self.text.value = plan.constraints
         self.show()
+
+    def _choose_room(self, event) -> None:
+        """The Room edited dropdown, as the designer sets it: its room becomes the one edited (not while an edit is
+        being placed: the dropdown goes back), and an object picked in another room is let go."""
+        s = self.session
+        if event.client is None or s.apartment.current is None or self.room.value not in self.room.options:
+            return  # set by `update`, or nothing to choose from
+        s.apartment.focus_room(self.room.options.index(self.room.value))
+        self.room.value = s.apartment.label()
+        if s.picking.selected is not None and not s.picking.movable():
+            s.picking.pick(None)
 
     def select(self, object_id: str) -> None:
         """Show `object_id`'s constraints (a click on it in the 3D view)."""

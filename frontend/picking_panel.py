@@ -75,13 +75,14 @@ class PickingPanel:
         """An object of the room edited as drawn (in the house frame in an apartment)."""
         return next(o for o in self.session.displayed().objects if o.id == object_id)
 
-    def _movable(self) -> bool:
+    def movable(self) -> bool:
+        """Is the picked object one of the room edited (which the pose fields and the gizmo move)?"""
         gen = self.session.state.gen
         return gen is not None and self.selected in {o.id for o in gen.plan.objects}
 
     def place_controls(self) -> None:
         """The drag gizmo sits on the selected object's top and stays there after each drag."""
-        if not self._movable():
+        if not self.movable():
             if self.controls is not None:
                 self.controls.remove()
                 self.controls = None
@@ -120,13 +121,13 @@ class PickingPanel:
         s.refresh_checks(s.pipeline.move(s.state.gen, self.selected, room_x, room_z, rotation, s.state.seed))
 
     def apply_pose(self) -> None:
-        if self._movable():
+        if self.movable():
             dx, dz = self._offset()  # the fields show the pose on screen
             self.move_to(self.selected, float(self.pose_x.value) - dx, float(self.pose_z.value) - dz,
                          float(self.pose_rot.value), how="typed pose")
 
     def turn(self, degrees: int) -> None:
-        if self._movable():
+        if self.movable():
             p = self.session.state.gen.layout.placement(self.selected)
             self.move_to(self.selected, p.x, p.z, round((p.rotation + degrees) / 90) * 90, how=f"turn {degrees:+d}°")
 

@@ -260,6 +260,16 @@ def test_editing_a_room_of_an_apartment(browser, studio):  # noqa: F811
     page.get_by_text("Undid: regenerate from graph.").wait_for(timeout=WAIT)
     assert session.apartment.current is moved
 
+    # the Room edited dropdown makes another room the one edited without a click on one of its objects
+    page.get_by_role("tab", name="Constraints").click()
+    session.picking.pick(sofa.id)
+    assert session.state.values.room == 1 and session.constraints.room.value == "room 2 (living room)"
+    choose(page, "Room edited", "room 3 (bedroom)", session.constraints.room)
+    page.get_by_text("Editing room 3 (bedroom) of the apartment").wait_for(timeout=WAIT)
+    assert session.state.values.room == 2 and session.picking.selected is None  # the sofa is let go
+    wait_until(page, lambda: field(page, "Raw constraints").input_value() == moved.plans[2].constraints,
+               "the bedroom's constraints")
+
     kinds = _saved(page, studio, session, "edited flat", moved)  # the moved sofa may fail a check
     assert kinds[:7] == ["constraints", "move", "move", "re-place", "undo", "task-graph", "undo"]
     assert set(kinds[7:]) <= {"override"}
