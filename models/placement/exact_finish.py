@@ -26,7 +26,7 @@ from models.placement.polish import Standing, broken, crowded
 
 MAX_OBJECTS = 9  # objects to move at most for the exact solve to run (0: never)
 BUDGET_S = 0.1  # Z3's time per object
-EXACT = "the whole room solved exactly (Z3) meets more of its constraints"  # the reason on a kept layout's steps
+EXACT = "the whole room solved exactly by Z3 meets more of its constraints"  # the reason on a kept layout's steps
 
 
 def wanted(ep: Episode) -> bool:

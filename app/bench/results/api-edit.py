@@ -4,9 +4,11 @@ script had to do before /edit existed), in the same process and run.
 For each of N tasks and seeds, a single room (the task's own) and an apartment (kitchen, living room, bedroom; the
 living room edited) are generated through the API, then edited three times, each from the generated value: a move
 (the room's first object 0.3 m along x), a constraint edit (that object's line made `middle`) and a re-place around
-the moved object (move and replace_around in one request). Each request is timed from the client's call to its
-parsed answer (FastAPI's TestClient: the JSON body in and out, validation, the pipeline); `apply_edits` alone, on
-the same values, gives the pipeline's share. Run from a tree's root:
+the moved object (move and replace_around in one request). In an apartment, a move in each of two rooms (the living
+room's and the kitchen's first objects) is made in one request (each edit naming its room) and as two requests, the
+second sent the first's answer, as a script without per-edit rooms had to. Each request is timed from the client's
+call to its parsed answer (FastAPI's TestClient: the JSON body in and out, validation, the pipeline); `apply_edits`
+alone, on the same values, gives the pipeline's share. Run from a tree's root:
 PYTHONPATH=. python app/bench/results/api-edit.py > app/bench/results/api-edit.txt
 """
 
@@ -66,7 +68,28 @@ def one_case(api: TestClient, pipeline: Pipeline, text: str, seed: int, house: b
         assert answer.status_code == 200, answer.text
         _, alone = timed(lambda: apply_edits(pipeline, value, edits, room))
         out[what] = (through_api, alone)
+    if house:
+        out["two rooms"] = two_rooms(api, value, made)
     return out
+
+
+def two_rooms(api: TestClient, value: Apartment, made: dict) -> tuple[float, float]:
+    """(seconds of one request moving the first object of room EDITED and of room 1, seconds of two requests)."""
+    moves = [{**json.loads(edits_of(*_room(value, k))["move"][0].model_dump_json()), "room": k} for k in (EDITED, 1)]
+    answer, one = timed(lambda: api.post("/edit", json={"apartment": made["apartment"], "edits": moves}))
+    assert answer.status_code == 200, answer.text
+
+    def two():
+        first = api.post("/edit", json={"apartment": made["apartment"], "edits": moves[:1]}).json()
+        return api.post("/edit", json={"apartment": first["apartment"], "edits": moves[1:]}).json()
+    both, twice = timed(two)
+    assert both["apartment"] == answer.json()["apartment"]
+    return one, twice
+
+
+def _room(value: Apartment, k: int):
+    gen = room_of(value, k)
+    return gen.plan, gen.layout
 
 
 def main() -> None:
@@ -86,6 +109,10 @@ def main() -> None:
             api_s, alone = [r[what][0] for r in runs[house]], [r[what][1] for r in runs[house]]
             print(f"    POST /edit {what:12s} {1000 * quantile(api_s, .5):6.0f} ({1000 * quantile(api_s, .9):6.0f})"
                   f"  [{1000 * quantile(alone, .5):5.0f}]  {quantile(api_s, .5) / quantile(gen, .5):.2f} x")
+    one, two = [r["two rooms"][0] for r in runs[True]], [r["two rooms"][1] for r in runs[True]]
+    print(f"  apartment, a move in each of two rooms: one request {1000 * quantile(one, .5):.0f} "
+          f"({1000 * quantile(one, .9):.0f}), two requests {1000 * quantile(two, .5):.0f} "
+          f"({1000 * quantile(two, .9):.0f}), {quantile(one, .5) / quantile(two, .5):.2f} x")
 
 
 if __name__ == "__main__":
