@@ -21,13 +21,14 @@ from models.exports.apartment import apartment_house
 from models.exports.stored import glb_of, house_of
 from models.language import InstructionError, check_instruction
 from models.placement import DEFAULT_SOLVER, SOLVERS
+from models.placement.base import summaries
 from models.placement.stepping import TOP, step_record
 from models.planning.apartment_planner import ApartmentError, is_apartment, parse_rooms
 from models.planning.floorplan import FloorplanError
 from models.values import ConstraintPlan, Scene
 from models.values.apartment import APARTMENT, Apartment
 from models.values.edit import Edit
-from models.world import INFER, requested_room_type
+from models.world import INFER, ROOM_TYPES, requested_room_type
 from studio_db import NotFound, Store
 from studio_db.store import Stored, WrongKind
 
@@ -144,6 +145,17 @@ def create_app(store: Store, pipeline: Pipeline | None = None) -> FastAPI:
     @app.get("/health")
     def health() -> dict:
         return {"status": "ok", "database": store.location.split("@")[-1]}
+
+    @app.get("/solvers")
+    def solvers() -> dict:
+        """The placers a request may name as its `solver`, each with a line on what it does, and the default."""
+        return {"default": DEFAULT_SOLVER, "solvers": summaries()}
+
+    @app.get("/room-types")
+    def room_types() -> dict:
+        """What POST /generate takes as `room_type`: a single room's type, "infer" (the parser reads it from the
+        instruction) or "apartment" (several rooms joined by doors; `rooms` names them)."""
+        return {"room_types": list(ROOM_TYPES), "infer": INFER, "apartment": APARTMENT}
 
     @app.post("/generate")
     def generate(req: GenerateRequest) -> dict:

@@ -139,3 +139,19 @@ def test_generate_infers_the_room_type_when_asked(db_url):
     api = client(db_url)
     gen = api.post("/generate", json={"instruction": "Look at the book under the lamp", "room_type": "infer"})
     assert gen.status_code == 200 and gen.json()["task_graph"]["room_type"] == "bedroom"
+
+
+def test_the_solvers_and_room_types_a_request_may_name(db_url):
+    """GET /solvers and GET /room-types: what `solver` and `room_type` take, so a script need not guess; each
+    listed value is accepted by POST /generate."""
+    from models.placement import DEFAULT_SOLVER, SOLVERS
+    api = client(db_url)
+    solvers = api.get("/solvers").json()
+    assert solvers["default"] == DEFAULT_SOLVER and sorted(solvers["solvers"]) == sorted(SOLVERS)
+    assert all(line for line in solvers["solvers"].values())
+    kinds = api.get("/room-types").json()
+    assert "kitchen" in kinds["room_types"] and (kinds["infer"], kinds["apartment"]) == ("infer", "apartment")
+    for room_type in (kinds["room_types"][-1], kinds["infer"]):
+        r = api.post("/generate", json={"instruction": "Put a mug in the sink", "room_type": room_type,
+                                        "solver": "dfs"})
+        assert r.status_code == 200, r.text
