@@ -9,9 +9,10 @@ from frontend.replay import RoomOf, one_room, repeated
 from models.exports.glb import ROLE_COLOURS
 from models.metrics import SceneMetrics
 from models.metrics.realism import Check, passed_share
-from models.placement import ALL_OBJECTS, PlacementStep
+from models.placement import ALL_OBJECTS, EXACT_FINISH, PlacementStep
+from models.placement.exact_finish import small
 from models.placement.reach_kept import WALLS
-from models.values import TaskGraph, Unplaced
+from models.values import ConstraintPlan, TaskGraph, Unplaced
 
 ROLE_MARK = {role: f'<span style="color:rgb{tuple(ROLE_COLOURS[role][:3])}">&#9632;</span>'
              for role in ("key", "anchor", "inference")}
@@ -35,6 +36,14 @@ def unplaced_note(unplaced: list[Unplaced]) -> str:
     if any(u.reason == WALLS for u in unplaced):
         lines.append(f"The solver `{ALL_OBJECTS}` places every object it can, even one that cuts a task object off.")
     return "Left out:\n" + "\n".join(lines)
+
+
+def exact_note(m: SceneMetrics, plan: ConstraintPlan, solver: str) -> str:
+    """For a layout with a constraint broken in a room the exact finish is tried in, the solver that may meet it."""
+    if solver == EXACT_FINISH or m.constraint_satisfaction >= 1 or not small(plan):
+        return ""
+    return (f"\n\nSome constraints are not met: the solver `{EXACT_FINISH}` (Task tab) solves a room this small again "
+            "with Z3 where that meets more of them at a lower energy.")
 
 
 def habits_note(found: list[Check]) -> str:

@@ -23,7 +23,8 @@ from viser import _messages
 from app.pipeline import Generation, Pipeline
 from frontend import camera
 from frontend.apartment import ApartmentMode
-from frontend.captions import graph_summary, metrics_table, parser_note, placing_progress, unplaced_note
+from frontend.captions import (exact_note, graph_summary, metrics_table, parser_note, placing_progress,
+                               unplaced_note)
 from frontend.checks import summary
 from frontend.constraints_panel import ConstraintsPanel
 from frontend.graph_image import render as render_graph
@@ -379,7 +380,8 @@ class StudioSession:
         where = f"*In {self.apartment.label()}:* " if self.apartment.current is not None else ""
         self.checks_md.content = where + summary(findings)
         energy = layout_energy(gen.plan, gen.layout.placements).total
-        self.constraints.metrics.content = metrics_table(m, energy, habit_checks(gen.plan, gen.layout))
+        self.constraints.metrics.content = metrics_table(m, energy, habit_checks(gen.plan, gen.layout)) + \
+            exact_note(m, gen.plan, self.state.solver)
         return findings
 
     # ---- undo / redo ------------------------------------------------------------------------------

@@ -245,6 +245,24 @@ def test_the_ready_line_says_what_was_left_out_and_which_solver_places_it():
     assert ALL_OBJECTS not in unplaced_note(no_room)
 
 
+def test_the_metrics_panel_names_the_exact_solver_where_it_may_meet_a_broken_constraint():
+    """In the iTHOR bedroom where Plan2Place leaves a constraint broken, the note names `plan2place_exact`; not once it
+    met them all, not under that solver, not in a crowded room."""
+    from frontend.captions import exact_note
+    from models.datasets import load_dataset
+    from models.metrics import scene_metrics
+    from models.placement import DEFAULT_SOLVER, EXACT_FINISH, get_solver
+
+    rooms = {r.plan.id: r.plan for r in load_dataset("human")}
+    plan = rooms["human-FloorPlan313"]
+    broken, met = (scene_metrics(plan, get_solver(name).solve(plan)) for name in (DEFAULT_SOLVER, EXACT_FINISH))
+    assert broken.constraint_satisfaction < 1 == met.constraint_satisfaction
+    assert f"`{EXACT_FINISH}`" in exact_note(broken, plan, DEFAULT_SOLVER)
+    assert exact_note(met, plan, DEFAULT_SOLVER) == exact_note(broken, plan, EXACT_FINISH) == ""
+    crowded = next(r.plan for r in load_dataset("dense") if len(r.plan.objects) <= 9)
+    assert exact_note(broken, crowded, DEFAULT_SOLVER) == ""
+
+
 def test_the_metrics_panel_names_each_habit_the_layout_misses():
     from frontend.captions import habits_note
     from models.metrics.realism import Check

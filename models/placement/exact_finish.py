@@ -23,16 +23,23 @@ import numpy as np
 from models.placement.base import PlacementStep, StepObserver
 from models.placement.greedy import Episode
 from models.placement.polish import Standing, broken, crowded
+from models.values import ConstraintPlan
 
 MAX_OBJECTS = 9  # objects to move at most for the exact solve to run (0: never)
 BUDGET_S = 0.1  # Z3's time per object
 EXACT = "the whole room solved exactly by Z3 meets more of its constraints"  # the reason on a kept layout's steps
 
 
+def small(plan: ConstraintPlan, fixed: int = 0) -> bool:
+    """A room the exact solve is tried in: at most `MAX_OBJECTS` objects free to move (`fixed`: how many are not),
+    not crowded."""
+    return 0 < len(plan.objects) - fixed <= MAX_OBJECTS and not crowded(plan)
+
+
 def wanted(ep: Episode) -> bool:
-    """Every object placed, a constraint broken, at most `MAX_OBJECTS` objects free to move, a room not crowded."""
-    free = len(ep.placed) - sum(p.id in ep.problem.fixed for p in ep.placed)
-    return not ep.failed and 0 < free <= MAX_OBJECTS and not crowded(ep.problem.plan) and bool(broken(ep))
+    """Every object placed, a constraint broken, in a `small` room."""
+    fixed = sum(p.id in ep.problem.fixed for p in ep.placed)
+    return not ep.failed and small(ep.problem.plan, fixed) and bool(broken(ep))
 
 
 def finished_exactly(ep: Episode, seed: int, observer: StepObserver | None = None) -> Episode:
