@@ -9,6 +9,8 @@ import json
 import sys
 from pathlib import Path
 
+from pydantic import ValidationError
+
 from app.cli_input import BadInput, load_value
 
 EDIT_LOG = "edits.jsonl"  # `h3ds edit`'s log in the folder, one row per edit as the studio stores them
@@ -22,11 +24,12 @@ def cmd_edit(args) -> int:
     folder = Path(args.dir)
     value = _generated(folder)
     try:
-        done = apply_edits(Pipeline(), value, [_edit_step(args)], args.room, args.seed, args.solver)
+        done = apply_edits(Pipeline(), value, _edit_steps(args), args.room, args.seed, args.solver)
     except EditError as e:
         option = {"room": "--room", "scene": str(folder / "scene.json")}.get(e.loc[0], _action(args))
-        option = "--to-room" if e.loc[-1] == "to_room" else option
-        raise BadInput(f"{option}: {e}") from e
+        option = "--to-room" if e.loc[-1] == "to_room" and not args.edits else option
+        where = f" [{e.loc[1]}]" if args.edits and e.loc[0] == "edits" else ""  # the list's index
+        raise BadInput(f"{option}{where}: {e}") from e
     out = Path(args.out) if args.out else folder
     paths = write_generation(done.room, out) if done.value is done.room.scene else write_apartment(done.value, out)
     log, earlier = out / EDIT_LOG, folder / EDIT_LOG
@@ -54,7 +57,27 @@ def _generated(folder: Path):
 
 
 def _action(args) -> str:
-    return "--move" if args.move else "--constraints" if args.constraints else "--replace-around"
+    return ("--move" if args.move else "--constraints" if args.constraints else "--edits" if args.edits else
+            "--replace-around")
+
+
+def _edit_steps(args) -> list:
+    """The edits the options ask for: --edits' list, or the one edit of the other options."""
+    from app.editing import EditList
+    if not args.edits:
+        return [_edit_step(args)]
+    if args.to_room is not None:
+        raise BadInput("--to-room goes with --move (in --edits, a move's \"to_room\")")
+    try:
+        raw = sys.stdin.read() if args.edits == "-" else Path(args.edits).read_text()
+        return EditList.validate_json(raw)
+    except (OSError, UnicodeDecodeError) as e:
+        raise BadInput(f"--edits: cannot read {args.edits} ({e})") from e
+    except ValidationError as e:
+        first = e.errors()[0]
+        index, *field = first["loc"] or [None]  # the list's index, then the field (after the kind's tag)
+        where = "" if index is None else f" [{index}]" + "".join(f".{p}" for p in field)
+        raise BadInput(f"--edits{where}: {first['msg']}") from e
 
 
 def _edit_step(args):
@@ -169,6 +192,8 @@ def add_scene_commands(sub, solver_help: str, solver_list: str) -> None:
                       "as in plan.json; - for stdin): placed again from the first object whose lines changed")
     what.add_argument("--replace-around", metavar="ID[,ID...]", help="keep these objects where they are and place "
                       "the others again around them")
+    what.add_argument("--edits", metavar="FILE", help="several edits in order, a JSON list as POST /edit's \"edits\" "
+                      "(each may name its own \"room\"); - for stdin")
     p.add_argument("--room", type=int, default=None, help="an apartment's room to edit: its number, as in "
                    "rooms/N-TYPE (default: the room of the object --move or --replace-around names)")
     p.add_argument("--to-room", type=int, default=None, metavar="N", help="with --move in an apartment: carry the "

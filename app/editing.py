@@ -11,7 +11,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Annotated, Literal
 
-from pydantic import BaseModel, Field
+from pydantic import BaseModel, Field, TypeAdapter
 
 from app.pipeline import Generation, Pipeline, generation_of, pose_of, room_generation
 from models.checks import Finding, apartment_findings, room_label, run_checks
@@ -62,6 +62,7 @@ class ReplaceAround(Step):
 
 
 EditStep = Annotated[Move | Constraints | ReplaceAround, Field(discriminator="kind")]
+EditList = TypeAdapter(Annotated[list[EditStep], Field(min_length=1, max_length=MAX_EDITS)])  # a script's edits
 
 
 class EditError(ValueError):

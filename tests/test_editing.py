@@ -215,15 +215,42 @@ def test_the_cli_edits_a_generated_folder_in_place_and_logs_it(kitchen, tmp_path
     (["--move", "fridge-0", "one", "1"], "--move: X, Z and ROTATION are numbers"),
     (["--room", "2", "--replace-around", "fridge-0"], "--room: scene scene-3 is a single room"),
     (["--constraints", "/nonexistent/c.txt"], "--constraints: cannot read"),
+    (["--edits", "EDITS:[]"], "List should have at least 1 item"),
+    (["--edits", 'EDITS:[{"kind": "paint"}]'], "--edits [0]: Input tag 'paint'"),
+    (["--edits", 'EDITS:[{"kind": "move", "object": "fridge-0", "x": "far", "z": 1}]'], "--edits [0].move.x: Input"),
+    (["--edits", 'EDITS:[{"kind": "constraints", "text": ""}, {"kind": "move", "object": "ghost-0", "x": 1, "z": 1}]'],
+     "--edits [1]: ghost-0 is not an object"),
+    (["--edits", 'EDITS:[{"kind": "constraints", "text": "", "room": 2}]'], "--edits [0]: scene scene-3 is a single"),
 ])
 def test_a_cli_edit_that_does_not_fit_exits_2_and_changes_nothing(kitchen, tmp_path, capsys, args, words):
     folder = tmp_path / "bread"
     write_generation(generation_of(kitchen), folder)
+    if args[-1].startswith("EDITS:"):  # an edits file beside the folder
+        (tmp_path / "edits.json").write_text(args[-1].removeprefix("EDITS:"))
+        args = [*args[:-1], str(tmp_path / "edits.json")]
     before = {p.name: p.read_bytes() for p in folder.iterdir()}
     assert main(["edit", str(folder), *args]) == 2
     err = capsys.readouterr().err
     assert len(err.strip().splitlines()) == 1 and words in err, err
     assert {p.name: p.read_bytes() for p in folder.iterdir()} == before
+
+
+def test_the_cli_makes_several_edits_from_a_file_as_post_edit_does(api, flat, tmp_path, capsys):
+    """`h3ds edit DIR --edits FILE`: POST /edit's edits list, each naming its room, in one run; the same apartment and
+    log rows as the API's answer."""
+    folder = tmp_path / "flat"
+    write_apartment(flat, folder)
+    fridge = next(p for p in flat.layouts[0].placements if p.type == "Fridge")
+    sofa = next(p for p in flat.layouts[1].placements if p.type == "Sofa")
+    edits = [{"kind": "move", "object": fridge.id, "x": 1.0, "z": 1.0, "room": 1},
+             {"kind": "move", "object": sofa.id, "x": 1.5, "z": 1.5, "room": 2}]
+    (tmp_path / "edits.json").write_text(json.dumps(edits))
+    assert main(["edit", str(folder), "--edits", str(tmp_path / "edits.json"), "--solver", SOLVER]) == 0
+    answer = edit(api, flat, edits).json()
+    assert Apartment.model_validate_json((folder / "apartment.json").read_text()) == \
+        Apartment.model_validate(answer["apartment"])
+    rows = [json.loads(line) for line in (folder / "edits.jsonl").read_text().splitlines()]
+    assert rows == answer["edits"]
 
 
 def test_the_cli_edits_an_apartment_room_and_a_folder_without_a_scene_is_refused(flat, tmp_path, capsys):

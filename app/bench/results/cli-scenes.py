@@ -1,9 +1,11 @@
 """What the scene-folder commands cost from a shell, against `h3ds generate` of the same scene in the same run: each
 is a fresh `h3ds` process (start-up included, as a script pays it), on a single kitchen and on a three-room apartment,
-with its own SQLite database. N rounds; p50 seconds of wall time. Run from a tree's root:
+with its own SQLite database. `edit --edits` makes MOVES moves from one file in one run, against MOVES runs of
+`edit --move` (MOVES x its p50). N rounds; p50 seconds of wall time. Run from a tree's root:
 PYTHONPATH=. python app/bench/results/cli-scenes.py > app/bench/results/cli-scenes.txt
 """
 
+import json
 import os
 import statistics
 import subprocess
@@ -13,6 +15,7 @@ import time
 from pathlib import Path
 
 N = 5
+MOVES = 3  # the moves of `edit --edits`
 H3DS = [sys.executable, "-m", "app.cli"]
 BREAD = "Put a chilled bread on the counter"
 CASES = {"kitchen": (["--room-type", "kitchen"], "fridge-0", []),
@@ -31,6 +34,10 @@ def one_round(case: str, tmp: Path, k: int, env: dict) -> dict[str, float]:
     folder, back = tmp / f"{case}-{k}", tmp / f"{case}-{k}-back"
     out = {"generate": timed(["generate", BREAD, *room, "--seed", str(k), "--out", str(folder)], env)}
     out["edit --move"] = timed(["edit", str(folder), *which, "--move", fridge, "1.0", "1.0"], env)
+    edits = tmp / f"{case}-{k}-edits.json"
+    edits.write_text(json.dumps([{"kind": "move", "object": fridge, "x": 1.0 + 0.2 * m, "z": 1.0}
+                                 for m in range(MOVES)]))
+    out[f"edit --edits ({MOVES} moves)"] = timed(["edit", str(folder), *which, "--edits", str(edits)], env)
     out["scenes store"] = timed(["scenes", "store", str(folder), "--name", f"{case} {k}"], env)
     out["scenes export"] = timed(["scenes", "export", "1", "--out", str(back)], env)
     return out
@@ -48,6 +55,9 @@ def main() -> None:
             p50 = {what: statistics.median(r[what] for r in runs) for what in runs[0]}
             cells = [f"{what} {p50[what]:.2f} ({p50[what] / gen:.2f} x)" for what in p50 if what != "generate"]
             print(f"  {case:10s} generate {gen:.2f}   " + "   ".join(cells))
+            many, one = p50[f"edit --edits ({MOVES} moves)"], p50["edit --move"]
+            print(f"  {case:10s} {MOVES} moves: edit --edits {many:.2f} against {MOVES} x edit --move {MOVES * one:.2f} "
+                  f"({many / (MOVES * one):.2f} x)")
 
 
 if __name__ == "__main__":
