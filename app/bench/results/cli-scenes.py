@@ -56,8 +56,8 @@ def main() -> None:
             cells = [f"{what} {p50[what]:.2f} ({p50[what] / gen:.2f} x)" for what in p50 if what != "generate"]
             print(f"  {case:10s} generate {gen:.2f}   " + "   ".join(cells))
             many, one = p50[f"edit --edits ({MOVES} moves)"], p50["edit --move"]
-            print(f"  {case:10s} {MOVES} moves: edit --edits {many:.2f} against {MOVES} x edit --move {MOVES * one:.2f} "
-                  f"({many / (MOVES * one):.2f} x)")
+            print(f"  {case:10s} {MOVES} moves: edit --edits {many:.2f} against {MOVES} x edit --move "
+                  f"{MOVES * one:.2f} ({many / (MOVES * one):.2f} x)")
 
 
 if __name__ == "__main__":
