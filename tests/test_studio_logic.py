@@ -247,11 +247,12 @@ def test_the_ready_line_says_what_was_left_out_and_which_solver_places_it():
 
 def test_the_metrics_panel_names_the_exact_solver_where_it_may_meet_a_broken_constraint():
     """In the iTHOR bedroom where Plan2Place leaves a constraint broken, the note names `plan2place_exact`; not once it
-    met them all, not under that solver, not in a crowded room."""
+    met them all, not under that solver, not in a room of more than `MAX_OBJECTS` objects."""
     from frontend.captions import exact_note
     from models.datasets import load_dataset
     from models.metrics import scene_metrics
     from models.placement import DEFAULT_SOLVER, EXACT_FINISH, get_solver
+    from models.placement.exact_finish import MAX_OBJECTS
 
     rooms = {r.plan.id: r.plan for r in load_dataset("human")}
     plan = rooms["human-FloorPlan313"]
@@ -259,8 +260,8 @@ def test_the_metrics_panel_names_the_exact_solver_where_it_may_meet_a_broken_con
     assert broken.constraint_satisfaction < 1 == met.constraint_satisfaction
     assert f"`{EXACT_FINISH}`" in exact_note(broken, plan, DEFAULT_SOLVER)
     assert exact_note(met, plan, DEFAULT_SOLVER) == exact_note(broken, plan, EXACT_FINISH) == ""
-    crowded = next(r.plan for r in load_dataset("dense") if len(r.plan.objects) <= 9)
-    assert exact_note(broken, crowded, DEFAULT_SOLVER) == ""
+    large = next(r.plan for r in load_dataset("seen", "validation") if len(r.plan.objects) > MAX_OBJECTS)
+    assert exact_note(broken, large, DEFAULT_SOLVER) == ""
 
 
 def test_the_metrics_panel_names_each_habit_the_layout_misses():

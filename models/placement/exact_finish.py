@@ -5,15 +5,17 @@ layout that meets everything). Z3's optimiser states the whole room as logic and
 it finds such layouts where they exist, at 40-150 ms per object.
 
 `finished_exactly` (the solver `plan2place_exact`, not the default): when the repaired episode places every object,
-leaves a constraint broken, has at most `MAX_OBJECTS` objects to move and its room is not `crowded` (there, on the
-diagnosis plans, Z3 within its budget never found a better layout and doubled the time), Z3 (models.placement.smt)
-solves the plan, the fixed objects kept, within `BUDGET_S` per object. Its layout is kept if it places every object,
-leaves no more task objects out of the robot's reach and has a lower energy (the judge's); its poses are then shown
-as steps after the episode's, each with the reason `EXACT`, the first marked as a `restart`. The time counts in PTO.
-On the diagnosis plans it met clearly more constraints in the iTHOR rooms (+1.29 points); on the gate's fresh plans
-it changed 2 of 48 `human` runs and 3 of 48 `unseen_a` (+0.25 and +0.58 points, neither clear of 0) for 20 % more
-time on `unseen_a`, so it did not become the default (`app/bench/results/plan2place/exact-finish/`; README,
-Plan2Place).
+leaves a constraint broken and has at most `MAX_OBJECTS` objects to move, Z3 (models.placement.smt) solves the plan,
+the fixed objects kept, within `BUDGET_S` per object. Its layout is kept if it places every object, leaves no more
+task objects out of the robot's reach and has a lower energy (the judge's); its poses are then shown as steps after
+the episode's, each with the reason `EXACT`, the first marked as a `restart`. The time counts in PTO.
+
+Tried as the default first (at 0.1 s per object, never in a crowded room): on the diagnosis plans it met clearly more
+constraints in the iTHOR rooms (+1.29 points); on the gate's fresh plans it changed 2 of 48 `human` runs and 3 of 48
+`unseen_a` (+0.25 and +0.58 points, neither clear of 0) for 20 % more time on `unseen_a`, so it did not become the
+default. As an opt-in solver it takes more time where it runs: 0.25 s per object, crowded rooms too (half of what it
+gained on the iTHOR rooms where Z3 meets more was in crowded kitchens; in `dense` it finds nothing and doubles the
+time). Measured in `app/bench/results/plan2place/exact-finish/` (README, Plan2Place).
 """
 
 from __future__ import annotations
@@ -22,18 +24,17 @@ import numpy as np
 
 from models.placement.base import PlacementStep, StepObserver
 from models.placement.greedy import Episode
-from models.placement.polish import Standing, broken, crowded
+from models.placement.polish import Standing, broken
 from models.values import ConstraintPlan
 
 MAX_OBJECTS = 9  # objects to move at most for the exact solve to run (0: never)
-BUDGET_S = 0.1  # Z3's time per object
+BUDGET_S = 0.25  # Z3's time per object
 EXACT = "the whole room solved exactly by Z3 meets more of its constraints"  # the reason on a kept layout's steps
 
 
 def small(plan: ConstraintPlan, fixed: int = 0) -> bool:
-    """A room the exact solve is tried in: at most `MAX_OBJECTS` objects free to move (`fixed`: how many are not),
-    not crowded."""
-    return 0 < len(plan.objects) - fixed <= MAX_OBJECTS and not crowded(plan)
+    """A room the exact solve is tried in: at most `MAX_OBJECTS` objects free to move (`fixed`: how many are not)."""
+    return 0 < len(plan.objects) - fixed <= MAX_OBJECTS
 
 
 def wanted(ep: Episode) -> bool:
