@@ -1,6 +1,6 @@
 """`plan2place_exact` paired with `plan2place`, Z3 and DFS over the same runs of each `bench-<set>/` here (the
-placement bench with those four solvers, one run per set: `human` all 120 iTHOR rooms x 5 seeds, `seen` 100 plans x 5
-seeds); writes `compare.md` here:
+placement bench with those four solvers, one run per set: `human` all 120 iTHOR rooms x 5 seeds, `seen` and `unseen_a`
+100 plans x 5 seeds); writes `compare.md` here:
 
     PYTHONPATH=. python app/bench/results/plan2place/exact-finish/compare.py
 """
