@@ -26,13 +26,17 @@ class Z3Solver(ModelSolver):
         super().__init__(time_budget_s)
 
     def run(self, model: Model, ov: dict[str, ObjVars], seed: int, seconds: float):
-        v = {n: (z3.Int(n) if var.binary else z3.Real(n)) for n, var in model.vars.items()}
+        # a context of its own: Z3's shared one keeps state from the solves before, so the same model and seed gave
+        # another layout after another solve in the same process
+        z3.set_param("smt.random_seed", int(seed) % 2**31, "sat.random_seed", int(seed) % 2**31)
+        ctx = z3.Context()
+        v = {n: (z3.Int(n, ctx) if var.binary else z3.Real(n, ctx)) for n, var in model.vars.items()}
 
         def lin(e: Expr):
-            return z3.Sum([z3.RealVal(0)] + [c * v[n] for n, c in e.terms.items()]) + e.const
+            return z3.Sum([z3.RealVal(0, ctx)] + [c * v[n] for n, c in e.terms.items()]) + e.const
 
         def on(names: list[str]):
-            return z3.And([v[n] == 1 for n in names]) if names else z3.BoolVal(True)
+            return z3.And([v[n] == 1 for n in names]) if names else z3.BoolVal(True, ctx)
 
         def statements():
             """Add the model to `opt`, one statement per step."""
@@ -48,8 +52,7 @@ class Z3Solver(ModelSolver):
                     yield opt.add_soft(v[n] == 1, weight=str(round(-coef, 4)))
 
         deadline = time.perf_counter() + seconds
-        opt = z3.Optimize()
-        z3.set_param("smt.random_seed", int(seed) % 2**31, "sat.random_seed", int(seed) % 2**31)
+        opt = z3.Optimize(ctx=ctx)
         # stating a big model through the Python API can outlast the budget on its own: stop when it does
         for _ in statements():
             if time.perf_counter() > deadline - READ_MARGIN_S:
