@@ -23,6 +23,7 @@ from __future__ import annotations
 import numpy as np
 
 from models.placement.base import PlacementStep, StepObserver
+from models.placement.formulation import PIN
 from models.placement.greedy import Episode
 from models.placement.polish import Standing, broken
 from models.values import ConstraintPlan
@@ -68,6 +69,6 @@ def finished_exactly(ep: Episode, seed: int, observer: StepObserver | None = Non
 
 
 def _same(a: tuple[float, float, float], b: tuple[float, float, float]) -> bool:
-    """The same pose, but for the layout's rounding."""
-    turn = (a[2] - b[2]) % 360
-    return abs(a[0] - b[0]) < 1e-3 and abs(a[1] - b[1]) < 1e-3 and min(turn, 360 - turn) < 1e-6
+    """The same kept pose: within the model's pin (`formulation.PIN`) and the layout's rounding."""
+    turn, near = (a[2] - b[2]) % 360, PIN + 1e-4
+    return abs(a[0] - b[0]) <= near and abs(a[1] - b[1]) <= near and min(turn, 360 - turn) < 1e-6
