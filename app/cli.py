@@ -418,6 +418,8 @@ def build_parser() -> argparse.ArgumentParser:
                    "generate: default dfs and the default solver")
     p.add_argument("--seeds", type=int, default=5, help="placement, steps: seeds per plan")
     p.add_argument("--budget", type=float, default=None, help="placement: time budget per plan (s)")
+    p.add_argument("--update", action="store_true", help="placement: run only --solvers again and keep the other "
+                   "solvers' rows stored in --out (same --dataset, --n and --seeds)")
     p.add_argument("--out", default=None, help="placement, language: folder for results and plots")
     p.add_argument("--adapter", default=None, metavar="DIR", help="language: the LoRA adapter to measure "
                    "(default: the shipped one)")

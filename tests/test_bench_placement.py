@@ -14,6 +14,26 @@ def test_bench_runs_registered_solvers_and_reports_both_tables(tmp_path, capsys)
     assert (tmp_path / "results.json").exists() and capsys.readouterr().out.startswith("placement on")
 
 
+def test_update_runs_only_the_named_solvers_again_and_refuses_other_plans(tmp_path, capsys):
+    import pytest
+    args = SimpleNamespace(dataset="unseen_b", solvers="dfs,milp", n=2, seeds=1, budget=None, out=str(tmp_path))
+    assert main(args) == 0
+    path = tmp_path / "results.json"
+    stale = [{**r, "energy": -1.0} for r in json.loads(path.read_text())]  # a mark the re-run must wipe off dfs only
+    path.write_text(json.dumps(stale))
+    assert main(SimpleNamespace(**{**vars(args), "solvers": "dfs", "update": True})) == 0
+    rows = json.loads(path.read_text())
+    assert [r["solver"] for r in rows] == [r["solver"] for r in stale]
+    assert {r["solver"] for r in rows if r["energy"] == -1.0} == {"milp"}
+    assert "dfs re-run on" in (tmp_path / "table.md").read_text() and "| milp |" in capsys.readouterr().out
+    before = path.read_text()
+    with pytest.raises(SystemExit, match="--n 3 --seeds 1"):
+        main(SimpleNamespace(**{**vars(args), "n": 3, "update": True}))
+    with pytest.raises(SystemExit, match="no stored run"):
+        main(SimpleNamespace(**{**vars(args), "out": str(tmp_path / "none"), "update": True}))
+    assert path.read_text() == before
+
+
 def test_na_values_are_left_out_and_counted():
     row = dict(cnt=1.0, sr=None, nav=1.0, key_nav=None, oob=0.0, pto=0.1, collisions=0, constraint_satisfaction=1.0,
                realism=None, energy=0.0, complete=True)

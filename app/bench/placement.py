@@ -171,24 +171,59 @@ def plots(rows: list[dict], solvers: list[str], out: Path, dataset: str) -> list
     return paths
 
 
+def stored_rows(out: Path, args) -> list[dict]:
+    """The rows of a stored run in `out` that `--update` re-runs some solvers of: the same plans and seeds, or an
+    error that names the difference (nothing is written then)."""
+    path = out / "results.json"
+    if not path.exists():
+        raise SystemExit(f"--update: no stored run in {out} (results.json is missing); run the bench there first")
+    rows = json.loads(path.read_text())
+    wanted = {(r.plan.id, seed) for r in pick_records(args.dataset, args.n) for seed in range(args.seeds)}
+    have = {(r["plan"], r["seed"]) for r in rows}
+    if {r["dataset"] for r in rows} != {args.dataset} or have != wanted:
+        raise SystemExit(f"--update: {path} holds other runs ({len(have)} plan-seed pairs of "
+                         f"{sorted({r['dataset'] for r in rows})}) than --dataset {args.dataset} --n {args.n} "
+                         f"--seeds {args.seeds} ({len(wanted)})")
+    return rows
+
+
+def merged(stored: list[dict], fresh: list[dict], solvers: list[str]) -> list[dict]:
+    """The stored rows with those of `solvers` swapped for the fresh ones, in the stored order (a solver new to
+    the run goes last)."""
+    new = {s: [r for r in fresh if r["solver"] == s] for s in solvers}
+    rows, placed = [], set()
+    for r in stored:
+        if r["solver"] not in new:
+            rows.append(r)
+        elif r["solver"] not in placed:
+            rows.extend(new[r["solver"]])
+            placed.add(r["solver"])
+    return rows + [r for s in solvers if s not in placed for r in new[s]]
+
+
 def main(args) -> int:
     solvers = [s.strip() for s in (args.solvers or DEFAULT_SOLVERS).split(",") if s.strip()]
     for s in solvers:
         get_solver(s)  # unknown names fail here, before any work
     out = Path(args.out or f"out/bench/placement-{args.dataset}")
+    stored = stored_rows(out, args) if getattr(args, "update", False) else None
     out.mkdir(parents=True, exist_ok=True)
     from app.batch.executors import executor_from_args
     with executor_from_args(args, serial_default=True) as executor:
         rows = run(args.dataset, solvers, args.n, args.seeds, args.budget, executor)
-    if any(r["solver"] == "human" for r in rows):
-        solvers = ["human", *solvers]
+    note = ""
+    if stored is not None:
+        rows = merged(stored, rows, solvers)
+        note = (f"\n\n{', '.join(solvers)} re-run on {time.strftime('%Y-%m-%d')} (`--update`); the other solvers' "
+                "rows are the stored ones")
+    solvers = list(dict.fromkeys(r["solver"] for r in rows))
     (out / "results.json").write_text(json.dumps(rows, indent=1))
     with open(out / "results.csv", "w", newline="") as f:
         writer = csv.DictWriter(f, fieldnames=list(rows[0]))
         writer.writeheader()
         writer.writerows(rows)
     pngs = plots(rows, solvers, out, args.dataset)
-    text = report(rows, solvers, args.dataset, len({r["plan"] for r in rows}), args.seeds)
+    text = report(rows, solvers, args.dataset, len({r["plan"] for r in rows}), args.seeds) + note
     (out / "table.md").write_text(text + "\n")
     print(text)
     print(f"\nraw results: {out / 'results.json'}, {out / 'results.csv'}; plots: {', '.join(str(p) for p in pngs)}")
