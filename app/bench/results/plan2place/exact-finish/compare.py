@@ -1,6 +1,8 @@
 """`plan2place_exact` paired with `plan2place`, Z3 and DFS over the same runs of each `bench-<set>/` here (the
 placement bench with those four solvers, one run per set: `human` all 120 iTHOR rooms x 5 seeds, `seen` and `unseen_a`
-100 plans x 5 seeds); writes `compare.md` here:
+100 plans x 5 seeds, Z3's rows run again with `--update` once each solve had a Z3 context of its own; `unseen_b` and
+`dense` 100 plans x 5 seeds, their DFS and Z3 rows those of the placement bench's `placement-<set>/`, the two
+Plan2Place solvers run together with `--update`); writes `compare.md` here:
 
     PYTHONPATH=. python app/bench/results/plan2place/exact-finish/compare.py
 """
