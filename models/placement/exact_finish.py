@@ -22,13 +22,16 @@ from __future__ import annotations
 
 import numpy as np
 
+from models.constraints import ConstraintSet
 from models.placement.base import PlacementStep, StepObserver
 from models.placement.formulation import PIN
 from models.placement.greedy import Episode
 from models.placement.polish import Standing, broken
+from models.placement.reorder import met
 from models.values import ConstraintPlan
 
 MAX_OBJECTS = 9  # objects to move at most for the exact solve to run (0: never)
+MIN_MET = 0.6  # share of the plan's constraints the layout must meet for the repairs' finish to run
 BUDGET_S = 0.25  # Z3's time per object
 EXACT = "the whole room solved exactly by Z3 meets more of its constraints"  # the reason on a kept layout's steps
 
@@ -38,15 +41,22 @@ def small(plan: ConstraintPlan, fixed: int = 0) -> bool:
     return 0 < len(plan.objects) - fixed <= MAX_OBJECTS
 
 
-def wanted(ep: Episode) -> bool:
-    """Every object placed, a constraint broken, in a `small` room."""
+def wanted(ep: Episode, min_met: float = MIN_MET) -> bool:
+    """Every object placed, a constraint broken, at least `min_met` of the plan's constraints met, in a `small`
+    room."""
     fixed = sum(p.id in ep.problem.fixed for p in ep.placed)
-    return not ep.failed and small(ep.problem.plan, fixed) and bool(broken(ep))
+    return (not ep.failed and small(ep.problem.plan, fixed) and bool(broken(ep))
+            and met(ep) >= min_met * constraint_count(ep.problem.constraints))
 
 
-def finished_exactly(ep: Episode, seed: int, observer: StepObserver | None = None) -> Episode:
-    """`ep`, or the layout Z3 finds for its plan if it is better (see the module)."""
-    if not wanted(ep):
+def constraint_count(constraints: ConstraintSet) -> int:
+    """The constraints of a plan as the metric counts them: each object's placement and each of its relations."""
+    return sum(1 + len(oc.relations) for oc in constraints.objects.values())
+
+
+def finished_exactly(ep: Episode, seed: int, observer: StepObserver | None = None, min_met: float = MIN_MET) -> Episode:
+    """`ep`, or the layout Z3 finds for its plan if it is better (see the module; `min_met`: `wanted`'s)."""
+    if not wanted(ep, min_met):
         return ep
     from models.placement.smt import Z3Solver  # z3 loads only where it runs
     problem = ep.problem

@@ -277,20 +277,20 @@ def place_stepwise(plan: ConstraintPlan, rng: np.random.Generator, choose: Choos
     objects of broken constraints first, if that is better (models.placement.reorder), and, with `keep_reach`,
     solved again with every task object kept reachable, if that is better (models.placement.reach_kept); each from
     the same random state. Where that leaves an object out, with `repair`, all of it again from another random
-    state, if that is better (models.placement.restarts). With `exact` too, Z3 over the whole room where a constraint
-    stays broken in a small room, if that is better (models.placement.exact_finish). All of it on one BLAS thread
+    state, if that is better (models.placement.restarts). Then, with `repair`, Z3 over the whole room where a
+    constraint stays broken in a small room that meets most of its constraints (with `exact`, wherever one stays
+    broken in a small room), if that is better (models.placement.exact_finish). All of it on one BLAS thread
     (models.placement.blas)."""
     with blas.one_blas_thread():
         start = copy.deepcopy(rng)
         ep = _solved(plan, rng, choose, fixed, observer, repair, keep_reach)
         if repair:
-            from models.placement.restarts import drawn, restarted, salted  # they build on this module's Episode
+            from models.placement.exact_finish import MIN_MET, finished_exactly  # they build on this module's Episode
+            from models.placement.restarts import drawn, restarted, salted
             solved = ep  # each restart shares its plan-only parts (`Episode`'s `shares`)
             ep = restarted(ep, lambda salt, seen: _solved(plan, salted(start, salt), drawn(choose), fixed, seen,
                                                           repair, keep_reach, solved), observer)
-        if repair and exact:
-            from models.placement.exact_finish import finished_exactly
-            ep = finished_exactly(ep, int(copy.deepcopy(start).integers(2**31)), observer)
+            ep = finished_exactly(ep, int(copy.deepcopy(start).integers(2**31)), observer, 0.0 if exact else MIN_MET)
     return ep
 
 
