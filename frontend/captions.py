@@ -44,8 +44,8 @@ def exact_note(m: SceneMetrics, plan: ConstraintPlan, solver: str) -> str:
     if solver == EXACT_FINISH or m.constraint_satisfaction >= MIN_MET or not small(plan):
         return ""
     return (f"\n\nMost constraints are not met: the default asks Z3 over a small room only where it meets at least "
-            f"{MIN_MET:.0%} of them (in rooms this crowded Z3 rarely did better); the solver `{EXACT_FINISH}` (Task tab) "
-            "asks it here too.")
+            f"{MIN_MET:.0%} of them (in rooms this crowded Z3 rarely did better); the solver `{EXACT_FINISH}` "
+            "(Task tab) asks it here too.")
 
 
 def habits_note(found: list[Check]) -> str:

@@ -105,7 +105,8 @@ class StudioSession:
             self.solver = gui.add_dropdown("Solver", tuple(sorted(SOLVERS)), initial_value=DEFAULT_SOLVER,
                                            hint=f"{DEFAULT_SOLVER} may leave out an object that would cut a task "
                                            f"object off from the robot; {ALL_OBJECTS} places every object it can; "
-                                           f"{EXACT_FINISH} asks Z3 over a small room even where most constraints are broken")
+                                           f"{EXACT_FINISH} asks Z3 over a small room even where most constraints "
+                                           "are broken")
             self.generate_button = gui.add_button("Generate", color="green")
             self.generate_button.on_click(lambda _: self.generate())
             self.graph_md = gui.add_markdown("")

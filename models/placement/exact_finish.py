@@ -14,11 +14,10 @@ episode's, each with the reason `EXACT`, the first marked as a `restart`. The ti
 
 Why `MIN_MET`: where a layout meets under 60 % of its constraints the room is over-constrained (in the opt-in solver's
 bench every such run was a crowded `dense` room); there Z3 took its whole budget and found a better layout in none of
-88 runs. Tried as the default
-first at 0.1 s per object and never in a crowded room, it failed its gate (too few rooms changed); with 0.25 s per
-object, crowded rooms allowed and `MIN_MET`, its gate on fresh plans met more constraints (+0.44 points pooled over
-the five sets, `unseen_a` +1.73) with no clear loss, for at most 11 % more median time. Measured in
-`app/bench/results/plan2place/exact-finish/` and `exact-default/` (README, Plan2Place).
+88 runs. Tried as the default first at 0.1 s per object and never in a crowded room, it failed its gate (too few rooms
+changed); with 0.25 s per object, crowded rooms allowed and `MIN_MET`, its gate on fresh plans met more constraints
+(+0.44 points pooled over the five sets, `unseen_a` +1.73) with no clear loss, for at most 11 % more median time.
+Measured in `app/bench/results/plan2place/exact-finish/` and `exact-default/` (README, Plan2Place).
 """
 
 from __future__ import annotations
