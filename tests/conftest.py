@@ -12,3 +12,10 @@ os.environ.setdefault("H3DS_PARSER", "rules")
 def pipeline():
     from app.pipeline import Pipeline
     return Pipeline(solver="dfs")
+
+
+@pytest.fixture
+def no_exact_finish(monkeypatch):
+    """A repair pass alone, without the exact finish after it (Z3 over the room, tested in test_exact_finish.py)."""
+    from models.placement import exact_finish
+    monkeypatch.setattr(exact_finish, "MAX_OBJECTS", 0)

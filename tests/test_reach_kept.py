@@ -12,7 +12,7 @@ import pytest
 from app.cli import main
 from models.datasets import load_dataset
 from models.energy.exact import layout_energy
-from models.placement import exact_finish, get_solver, reach_kept, restarts
+from models.placement import get_solver, reach_kept, restarts
 from models.placement.greedy import _steps
 from models.placement.plan2place.policy import place, shipped_policy, shipped_weights
 from models.placement.reach_kept import AGAIN, WALLS, better, kept_step, out_of_reach
@@ -24,11 +24,10 @@ WALLED = "dense-00080"  # 12 objects; Plan2Place, without the restarts, leaves t
 
 
 @pytest.fixture(autouse=True)
-def no_restarts(monkeypatch):
+def no_restarts(monkeypatch, no_exact_finish):
     """The reach-kept solve alone: the solves from another random state, which may place what it leaves out, are
     tested in test_restarts.py, the exact finish after them in test_exact_finish.py."""
     monkeypatch.setattr(restarts, "RESTARTS", 0)
-    monkeypatch.setattr(exact_finish, "MAX_OBJECTS", 0)
 
 
 def solved(plan, keep_reach: bool, observer=None, seed: int = 0):

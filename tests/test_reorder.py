@@ -6,22 +6,18 @@ import numpy as np
 import pytest
 
 from models.datasets import load_dataset
-from models.placement import exact_finish, reorder
+from models.placement import reorder
 from models.placement.greedy import Episode
 from models.placement.plan2place.policy import place, shipped_policy, shipped_weights
 from models.placement.polish import ALLOWANCE
 from models.placement.reorder import AGAIN, better, broken_first, first_ids
 from episode_support import judged
 
+pytestmark = pytest.mark.usefixtures("no_exact_finish")  # each pass alone
+
 REPAIRED = lambda ep, observer: None  # noqa: E731  (the episodes given are repaired already)
 PLANS = {r.plan.id: r.plan for r in load_dataset("human")}
 ROOM, SEED = "human-FloorPlan313", 1  # Plan2Place leaves the chair out of the middle: the bed took it
-
-
-@pytest.fixture(autouse=True)
-def no_exact_finish(monkeypatch):
-    """The second solve alone: the exact finish after it (Z3 over the room) is tested in test_exact_finish.py."""
-    monkeypatch.setattr(exact_finish, "MAX_OBJECTS", 0)
 
 
 def episode(plan, rounds: int, observer=None, seed: int = SEED) -> Episode:

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from models.datasets import load_dataset
-from models.placement import exact_finish, restarts
+from models.placement import restarts
 from models.placement.greedy import Episode
 from models.placement.plan2place.policy import place, shipped_policy, shipped_weights
 from models.placement.reach_kept import WALLS
@@ -15,15 +15,11 @@ from models.placement.restarts import AGAIN, better, drawn, restarted
 from models.placement.result import NO_ROOM
 from episode_support import judged
 
+pytestmark = pytest.mark.usefixtures("no_exact_finish")  # each pass alone
+
 HUMAN = {r.plan.id: r.plan for r in load_dataset("human")}
 DENSE = {r.plan.id: r.plan for r in load_dataset("dense")}
 KITCHEN, BEDROOM = "human-FloorPlan27", "human-FloorPlan316"  # the 2.9 m counter; the chair beside a 2.5 m desk
-
-
-@pytest.fixture(autouse=True)
-def no_exact_finish(monkeypatch):
-    """The restarts alone: the exact finish after them (Z3 over the room) is tested in test_exact_finish.py."""
-    monkeypatch.setattr(exact_finish, "MAX_OBJECTS", 0)
 
 
 def solved(plan, seed: int, observer=None) -> Episode:

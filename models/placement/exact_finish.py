@@ -24,7 +24,6 @@ from __future__ import annotations
 
 import numpy as np
 
-from models.constraints import ConstraintSet
 from models.placement.base import PlacementStep, StepObserver
 from models.placement.formulation import PIN
 from models.placement.greedy import Episode
@@ -48,12 +47,7 @@ def wanted(ep: Episode, min_met: float = MIN_MET) -> bool:
     room."""
     fixed = sum(p.id in ep.problem.fixed for p in ep.placed)
     return (not ep.failed and small(ep.problem.plan, fixed) and bool(broken(ep))
-            and met(ep) >= min_met * constraint_count(ep.problem.constraints))
-
-
-def constraint_count(constraints: ConstraintSet) -> int:
-    """The constraints of a plan as the metric counts them: each object's placement and each of its relations."""
-    return sum(1 + len(oc.relations) for oc in constraints.objects.values())
+            and met(ep) >= min_met * ep.problem.constraints.count())
 
 
 def finished_exactly(ep: Episode, seed: int, observer: StepObserver | None = None, min_met: float = MIN_MET) -> Episode:
