@@ -184,15 +184,52 @@ def test_milp_reads_back_only_a_feasible_solution_and_says_why():
     assert all("no feasible layout" in r for r in reasons.values())
 
 
-def test_z3_stops_stating_a_model_that_outlasts_its_budget():
-    """Stating a big model through Z3's Python API is slow: with no time left it stops and says so."""
+def test_z3_reads_the_model_as_smtlib_text_as_it_was_built():
+    """The model reaches Z3 as SMT-LIB text: bounds, a negative coefficient, an implication, a disjunction and a
+    weighted soft goal must each mean what they meant in the model."""
+    import z3
+
+    from models.placement.formulation import Expr, Model
+    from models.placement.smt import smtlib
+    m = Model()
+    x, y, s = m.var("x[a]", 0.0, 10.0), m.var("y[a]", -2.5, 2.5), m.binary("s[a,b]")
+    m.require([1.5 - x])  # x >= 1.5
+    m.require([x - 2 * y - 4.25], when=["s[a,b]"])  # s -> x <= 2y + 4.25
+    m.any_of([[x - 2.0], [Expr({"x[a]": -1.0}, 9.0)]], when=[], tag="far")  # x <= 2 or x >= 9
+    m.objective = m.objective + (1 - s) * 3.0
+    text, names = smtlib(m)
+    opt = z3.Optimize(ctx=(ctx := z3.Context()))
+    opt.from_string(text)
+    opt.add(z3.Real(names["x[a]"], ctx) >= 1.9, z3.Real(names["y[a]"], ctx) <= -1.0)
+    assert opt.check() == z3.sat
+    got = opt.model()
+    x_, y_ = (float(got.eval(z3.Real(names[n], ctx), True).as_fraction()) for n in ("x[a]", "y[a]"))
+    assert got.eval(z3.Int(names["s[a,b]"], ctx)).as_long() == 1 and 1.9 <= x_ <= 2.0 and x_ <= 2 * y_ + 4.25
+    opt.add(z3.Real(names["y[a]"], ctx) <= -1.5)  # now the soft goal cannot hold: s must drop to 0
+    assert opt.check() == z3.sat and opt.model().eval(z3.Int(names["s[a,b]"], ctx)).as_long() == 0
+
+
+def test_z3_with_no_time_leaves_every_object_out_with_a_reason():
     from models.placement.formulation import build
     from models.placement.problem import PlacementProblem
     from models.placement.smt import Z3Solver
     model, ov = build(PlacementProblem.from_plan(plan(KITCHEN, KITCHEN_TEXT)))
     poses, reasons = Z3Solver().run(model, ov, seed=0, seconds=0.001)
     assert poses == {} and set(reasons) == set(ov)
-    assert all("could not state the model" in r for r in reasons.values())
+    assert all("Z3 found no model within 0.00 s" in r or "budget (0.00 s) ran out" in r for r in reasons.values())
+
+
+def test_z3_on_a_work_budget_gives_a_seed_one_layout_whatever_the_clock():
+    """With a budget in Z3's own resource count (as the exact finish runs it), a solve cut short by that budget ends
+    where it ends on any machine: the same layout with 10 s or 60 s on the clock, fewer objects than Z3 places with
+    more work, and a reason that says the budget ran out."""
+    from models.datasets import load_dataset
+    from models.placement.smt import Z3Solver
+    bedroom = next(r.plan for r in load_dataset("human") if r.plan.id == "human-FloorPlan313")
+    cut = Z3Solver(10.0, 60_000).solve(bedroom, 3)
+    assert cut.placements and cut.placements == Z3Solver(60.0, 60_000).solve(bedroom, 3).placements
+    assert len(cut.placements) < len(Z3Solver(10.0, 1_000_000).solve(bedroom, 3).placements)
+    assert all("360,000 units of its work) ran out" in u.reason for u in cut.unplaced)
 
 
 @pytest.mark.parametrize("where", ["Optimize.check", "ModelRef.eval"])

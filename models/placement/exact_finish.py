@@ -2,12 +2,13 @@
 move one object or a small group at a time, and some small rooms need every object elsewhere at once to meet their
 last constraint (in the iTHOR room FloorPlan313 the bed, the desk and the shelves all stand on other walls in the
 layout that meets everything). Z3's optimiser states the whole room as logic and searches the disjunctions itself, so
-it finds such layouts where they exist, at 40-150 ms per object.
+it finds such layouts where they exist, at 20-60 ms per object.
 
 `finished_exactly`, the last of the repairs of every step-wise placer (greedy, look-ahead, Plan2Place): when the
 repaired episode places every object, leaves a constraint broken, meets at least `MIN_MET` of the plan's constraints
 and has at most `MAX_OBJECTS` objects to move, Z3 (models.placement.smt) solves the plan, the fixed objects kept,
-within `BUDGET_S` per object, crowded rooms too. Its layout is kept if it places every object, leaves no more task
+within `WORK` of its resource count per object (not a time: a seed's layout does not hang on the machine's speed),
+crowded rooms too. Its layout is kept if it places every object, leaves no more task
 objects out of the robot's reach and has a lower energy (the judge's); its poses are then shown as steps after the
 episode's, each with the reason `EXACT`, the first marked as a `restart`. The time counts in PTO. The solver
 `plan2place_exact` asks Z3 wherever a constraint stays broken in a small room, however many are.
@@ -33,7 +34,8 @@ from models.values import ConstraintPlan
 
 MAX_OBJECTS = 9  # objects to move at most for the exact solve to run (0: never)
 MIN_MET = 0.6  # share of the plan's constraints the layout must meet for the repairs' finish to run
-BUDGET_S = 0.25  # Z3's time per object
+WORK = 1_000_000  # Z3's resource count per object (its rlimit; 0.15-0.3 s of this machine's CPU)
+STALL_S = 1.0  # Z3's time per object at most, should a slower machine not get through `WORK` in it
 EXACT = "the whole room solved exactly by Z3 meets more of its constraints"  # the reason on a kept layout's steps
 
 
@@ -56,7 +58,7 @@ def finished_exactly(ep: Episode, seed: int, observer: StepObserver | None = Non
         return ep
     from models.placement.smt import Z3Solver  # z3 loads only where it runs
     problem = ep.problem
-    layout = Z3Solver(BUDGET_S * len(problem.plan.objects)).solve(problem.plan, seed, fixed=problem.fixed or None)
+    layout = Z3Solver(STALL_S * len(problem.plan.objects), WORK).solve(problem.plan, seed, fixed=problem.fixed or None)
     poses = {p.id: (p.x, p.z, p.rotation) for p in layout.placements}
     if layout.unplaced or not all(_same(poses[oid], pose) for oid, pose in problem.fixed.items()):
         return ep  # (where the kept poses cannot be completed, the Z3 placer places every object afresh)
