@@ -35,7 +35,6 @@ from models.values import ConstraintPlan
 MAX_OBJECTS = 9  # objects to move at most for the exact solve to run (0: never)
 MIN_MET = 0.6  # share of the plan's constraints the layout must meet for the repairs' finish to run
 WORK = 1_000_000  # Z3's resource count per object (its rlimit; 0.15-0.3 s of this machine's CPU)
-TRIES = 3  # Z3 solves with successive seeds until one is kept
 STALL_S = 1.0  # Z3's time per object at most, should a slower machine not get through `WORK` in it
 EXACT = "the whole room solved exactly by Z3 meets more of its constraints"  # the reason on a kept layout's steps
 
@@ -57,33 +56,24 @@ def finished_exactly(ep: Episode, seed: int, observer: StepObserver | None = Non
     """`ep`, or the layout Z3 finds for its plan if it is better (see the module; `min_met`: `wanted`'s)."""
     if not wanted(ep, min_met):
         return ep
-    for k in range(TRIES):
-        new = _solved(ep, seed + k)
-        if new is not None:
-            break
-    else:
-        return ep
-    terms = Standing(new).setup.terms()
-    new.energy, new.terms = terms["total"], dict(terms)
-    for k, p in enumerate(new.placed if observer is not None else ()):
-        observer(PlacementStep(p.id, p.x, p.z, p.rotation, np.empty((0, 3)), np.empty(0), dict(terms), EXACT,
-                               restart=k == 0))
-    return new
-
-
-def _solved(ep: Episode, seed: int) -> Episode | None:
-    """`ep` with the layout Z3 finds for its plan under `seed`, or None if that is no better."""
     from models.placement.smt import Z3Solver  # z3 loads only where it runs
     problem = ep.problem
     layout = Z3Solver(STALL_S * len(problem.plan.objects), WORK).solve(problem.plan, seed, fixed=problem.fixed or None)
     poses = {p.id: (p.x, p.z, p.rotation) for p in layout.placements}
     if layout.unplaced or not all(_same(poses[oid], pose) for oid, pose in problem.fixed.items()):
-        return None  # (where the kept poses cannot be completed, the Z3 placer places every object afresh)
+        return ep  # (where the kept poses cannot be completed, the Z3 placer places every object afresh)
     new = ep.fork()
     new.placed = [ep.scorer.place(o, *problem.fixed.get(o.id, poses[o.id])) for o in ep.order]
     new.repaired = None
     now, then = Standing(new), Standing(ep)
-    return None if now.out > then.out or now.energy >= then.energy else new
+    if now.out > then.out or now.energy >= then.energy:
+        return ep
+    terms = now.setup.terms()
+    new.energy, new.terms = terms["total"], dict(terms)
+    for k, p in enumerate(new.placed if observer is not None else ()):
+        observer(PlacementStep(p.id, p.x, p.z, p.rotation, np.empty((0, 3)), np.empty(0), dict(terms), EXACT,
+                               restart=k == 0))
+    return new
 
 
 def _same(a: tuple[float, float, float], b: tuple[float, float, float]) -> bool:
