@@ -144,3 +144,21 @@ def test_a_gate_report_pairs_the_variants_and_shows_each_placers_p50_change():
     assert report.startswith("the change - without, made-up plans, mean over the same (plan, seed) runs")
     assert "| dense / greedy (2 runs, 0 layouts unchanged) | _-15.00" in report  # CNT falls: worse
     assert "- dense / greedy: 15.00 -> 20.00 (+33.3 %)" in report
+
+
+def test_a_gates_pooled_constraints_pair_each_plan_of_every_set_as_one_unit():
+    """The pooled condition of a gate's rule: the second variant minus the first over the runs of all sets, a plan
+    of one set never paired with the plan of the same name in another."""
+    from app.bench.gates import pooled_constraints
+
+    def row(ds, solver, plan, met):
+        return {"set": ds, "placer": "plan2place", "solver": solver, "plan": plan, "seed": 0,
+                "constraint_satisfaction": met}
+    gain = {"seen": 0.1, "human": 0.3}
+    rows = [row(ds, v, f"p{k}", 0.5 + (gain[ds] if v == "with" else 0.0)) for ds in gain
+            for k in range(4) for v in ("without", "with")]
+    line = pooled_constraints(rows, "plan2place", {"without": 0, "with": 1})
+    assert line.startswith("- plan2place: **+20.00 [") and "[+20.00, +20.00]" not in line  # 8 units, not 4 mixed
+    rows.append(row("human", "with", "p9", 0.1))  # a run of one variant alone is no pair
+    assert pooled_constraints(rows, "plan2place", {"without": 0, "with": 1}) == line
+    assert pooled_constraints(rows, "plan2place", {"with": 1, "without": 0}).startswith("- plan2place: _-20.00")

@@ -8,7 +8,9 @@ import json
 import statistics
 from pathlib import Path
 
-from app.bench.paired import alternating, header, variant_rows
+import numpy as np
+
+from app.bench.paired import alternating, cell, header, interval, paired, variant_rows
 from models.datasets import load_dataset
 from models.datasets.fresh import fresh_plans
 
@@ -47,6 +49,14 @@ def p50s(rows: list[dict], placers, variants) -> list[str]:
                                      (label, placer, v)) for v in variants]
             out.append(f"- {label} / {placer}: {p50[0]:.2f} -> {p50[1]:.2f} ({100 * (p50[1] / p50[0] - 1):+.1f} %)")
     return out
+
+
+def pooled_constraints(rows: list[dict], placer: str, variants) -> str:
+    """Constraints met of `placer`, the second variant minus the first, over every set's runs pooled (each plan a
+    unit of the bootstrap): the pooled condition of a gate's rule."""
+    mine = [{**r, "plan": f"{r['set']}/{r['plan']}"} for r in rows if r["placer"] == placer]
+    diffs = paired(mine, "constraint_satisfaction", *reversed(list(variants)))
+    return f"- {placer}: " + cell(*(100 * v for v in interval(diffs, np.random.default_rng(0))), True)
 
 
 def variant_report(name: str, plans: str, rows: list[dict], variants, placers, metrics=METRICS) -> str:

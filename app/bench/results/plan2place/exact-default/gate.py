@@ -7,10 +7,8 @@ pooled constraints figure last:
 """
 from pathlib import Path
 
-import numpy as np
-
-from app.bench.gates import METRICS, fresh_sets, variant_report
-from app.bench.paired import alternating, cell, interval, paired, store
+from app.bench.gates import METRICS, fresh_sets, pooled_constraints, variant_report
+from app.bench.paired import alternating, store
 from models.placement import exact_finish
 
 HERE = Path(__file__).parent
@@ -18,15 +16,8 @@ VARIANTS = {"without": 0, "exact finish": exact_finish.MAX_OBJECTS}
 PLACERS = ("plan2place", "greedy")
 
 
-def pooled(rows: list[dict], placer: str) -> str:
-    """Constraints met, with minus without, over every set's runs of `placer` (each plan a bootstrap unit)."""
-    mine = [{**r, "plan": f"{r['set']}/{r['plan']}"} for r in rows if r["placer"] == placer]
-    diffs = paired(mine, "constraint_satisfaction", *reversed(VARIANTS))
-    return f"- {placer}: " + cell(*(100 * v for v in interval(diffs, np.random.default_rng(0))), True)
-
-
 if __name__ == "__main__":
     runs = alternating(fresh_sets("exact-default"), exact_finish, "MAX_OBJECTS", VARIANTS, METRICS, PLACERS)
     report = variant_report("the exact finish in the repairs", "fresh plans", runs, tuple(VARIANTS), PLACERS)
     store(HERE, runs, report + "\nConstraints met (x 100), with minus without, the five sets pooled:\n\n"
-          + "\n".join(pooled(runs, p) for p in PLACERS) + "\n")
+          + "\n".join(pooled_constraints(runs, p, VARIANTS) for p in PLACERS) + "\n")
