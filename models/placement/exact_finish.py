@@ -8,9 +8,9 @@ it finds such layouts where they exist, at 20-60 ms per object.
 repaired episode places every object, leaves a constraint broken, meets at least `MIN_MET` of the plan's constraints
 and has at most `MAX_OBJECTS` objects to move, Z3 (models.placement.smt) solves the plan, the fixed objects kept,
 within `WORK` of its resource count per object (not a time: a seed's layout does not hang on the machine's speed),
-crowded rooms too. Its layout is kept if it places every object, leaves no more task
-objects out of the robot's reach and has a lower energy (the judge's); its poses are then shown as steps after the
-episode's, each with the reason `EXACT`, the first marked as a `restart`. The time counts in PTO. The solver
+crowded rooms too. Its layout is kept if it places every object, leaves no more task objects out of the robot's
+reach and has a lower energy (the judge's); its poses are then shown as steps after the episode's, each with the
+reason `EXACT`, the first marked as a `restart`. The time counts in PTO. The solver
 `plan2place_exact` asks Z3 wherever a constraint stays broken in a small room, however many are.
 
 Why `MIN_MET`: where a layout meets under 60 % of its constraints the room is over-constrained (in the opt-in solver's

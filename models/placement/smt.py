@@ -1,7 +1,8 @@
-"""Z3 placer: the same model stated as logic and handed to Z3's Optimize with a time limit.
+"""Z3 placer: the same model written as SMT-LIB text and handed to Z3's Optimize with a time limit (or, for the
+exact finish, a budget of Z3's own work, which ends at the same point on any machine).
 
 Positions are reals, rotations and `placed` flags 0/1 integers; each condition is an implication, each
-disjunction an `Or`, each soft constraint an `add_soft` with its weight, so Z3 searches the
+disjunction an `or`, each soft constraint an `assert-soft` with its weight, so Z3 searches the
 disjunctions itself instead of through big-M rows. The seed sets Z3's random seeds.
 """
 
@@ -38,7 +39,6 @@ class Z3Solver(ModelSolver):
         text, names = smtlib(model)
         opt = z3.Optimize(ctx=ctx)
         opt.from_string(text)
-        v = {n: (z3.Int(k, ctx) if model.vars[n].binary else z3.Real(k, ctx)) for n, k in names.items()}
         # Z3 gets what is left of the budget, less a margin for reading the model back
         left = max(0.02, deadline - time.perf_counter() - READ_MARGIN_S)
         opt.set("timeout", int(1000 * left))
@@ -62,7 +62,8 @@ class Z3Solver(ModelSolver):
             m = None
 
         def val(name: str) -> float:
-            x = m.eval(v[name], model_completion=True)
+            const = (z3.Int if model.vars[name].binary else z3.Real)(names[name], ctx)  # the parsed variable
+            x = m.eval(const, model_completion=True)
             return float(x.as_fraction()) if z3.is_rational_value(x) else float(x.as_long())
 
         if m is not None:
@@ -73,8 +74,8 @@ class Z3Solver(ModelSolver):
                         poses[oid] = (val(f"x[{oid}]"), val(f"z[{oid}]"), 90.0 * k)
                     else:
                         reasons[oid] = ("Z3's best model leaves it out: no position fits with the others"
-                                        if str(result) == "sat" else
-                                        f"Z3's best model when its budget ({self._budget(seconds, ov)}) ran out leaves it out")
+                                        if str(result) == "sat" else f"Z3's best model when its budget "
+                                        f"({self._budget(seconds, ov)}) ran out leaves it out")
             except z3.Z3Exception as e:  # the timer fired as check() returned: reading the model is canceled too
                 poses, m, result = {}, None, _message(e)
         if m is None:
