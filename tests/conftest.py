@@ -16,6 +16,8 @@ def pipeline():
 
 @pytest.fixture
 def no_exact_finish(monkeypatch):
-    """A repair pass alone, without the exact finish after it (Z3 over the room, tested in test_exact_finish.py)."""
+    """A repair pass alone, without the exact finish after it (Z3 over the room or a window of it, tested in
+    test_exact_finish.py and test_window.py)."""
     from models.placement import exact_finish
     monkeypatch.setattr(exact_finish, "MAX_OBJECTS", 0)
+    monkeypatch.setattr(exact_finish, "ONE_MORE_AT", 0)

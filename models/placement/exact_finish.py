@@ -11,7 +11,9 @@ within `WORK` of its resource count per object (not a time: a seed's layout does
 crowded rooms too. Its layout is kept if it places every object, leaves no more task objects out of the robot's
 reach and has a lower energy (the judge's); its poses are then shown as steps after the episode's, each with the
 reason `EXACT`, the first marked as a `restart`. The time counts in PTO. The solver
-`plan2place_exact` asks Z3 wherever a constraint stays broken in a small room, however many are.
+`plan2place_exact` asks Z3 wherever a constraint stays broken in a small room, however many are. In a larger room
+where at most `ONE_MORE_AT` constraints stay broken, Z3 moves a window of it instead (models.placement.window), its
+steps shown with the reason `ONE_MORE`.
 
 Why `MIN_MET`: where a layout meets under 60 % of its constraints the room is over-constrained (in the opt-in solver's
 bench every such run was a crowded `dense` room); there Z3 took its whole budget and found a better layout in none of
@@ -30,13 +32,16 @@ from models.placement.formulation import PIN
 from models.placement.greedy import Episode
 from models.placement.polish import Standing, broken
 from models.placement.reorder import met
+from models.placement.window import one_more
 from models.values import ConstraintPlan
 
 MAX_OBJECTS = 9  # objects to move at most for the exact solve to run (0: never)
 MIN_MET = 0.6  # share of the plan's constraints the layout must meet for the repairs' finish to run
 WORK = 1_000_000  # Z3's resource count per object (its rlimit; 0.15-0.3 s of this machine's CPU)
 STALL_S = 1.0  # Z3's time per object at most, should a slower machine not get through `WORK` in it
+ONE_MORE_AT = 1  # constraints broken at most for Z3 to move a window of a larger room (0: never)
 EXACT = "the whole room solved exactly by Z3 meets more of its constraints"  # the reason on a kept layout's steps
+ONE_MORE = "Z3 moved the objects around a broken constraint so that one more is met"  # the same, in a larger room
 
 
 def small(plan: ConstraintPlan, fixed: int = 0) -> bool:
@@ -45,17 +50,18 @@ def small(plan: ConstraintPlan, fixed: int = 0) -> bool:
 
 
 def wanted(ep: Episode, min_met: float = MIN_MET) -> bool:
-    """Every object placed, a constraint broken, at least `min_met` of the plan's constraints met, in a `small`
-    room."""
-    fixed = sum(p.id in ep.problem.fixed for p in ep.placed)
-    return (not ep.failed and small(ep.problem.plan, fixed) and bool(broken(ep))
-            and met(ep) >= min_met * ep.problem.constraints.count())
+    """Every object placed, a constraint broken, at least `min_met` of the plan's constraints met."""
+    return not ep.failed and bool(broken(ep)) and met(ep) >= min_met * ep.problem.constraints.count()
 
 
 def finished_exactly(ep: Episode, seed: int, observer: StepObserver | None = None, min_met: float = MIN_MET) -> Episode:
     """`ep`, or the layout Z3 finds for its plan if it is better (see the module; `min_met`: `wanted`'s)."""
     if not wanted(ep, min_met):
         return ep
+    if not small(ep.problem.plan, sum(p.id in ep.problem.fixed for p in ep.placed)):
+        few = ep.problem.constraints.count() - met(ep) <= ONE_MORE_AT
+        new = one_more(ep, seed, WORK, STALL_S) if few else ep
+        return ep if new is ep else _shown(Standing(new), observer, ONE_MORE)
     from models.placement.smt import Z3Solver  # z3 loads only where it runs
     problem = ep.problem
     layout = Z3Solver(STALL_S * len(problem.plan.objects), WORK).solve(problem.plan, seed, fixed=problem.fixed or None)
@@ -68,10 +74,16 @@ def finished_exactly(ep: Episode, seed: int, observer: StepObserver | None = Non
     now, then = Standing(new), Standing(ep)
     if now.out > then.out or now.energy >= then.energy:
         return ep
-    terms = now.setup.terms()
+    return _shown(now, observer, EXACT)
+
+
+def _shown(now: Standing, observer: StepObserver | None, why: str) -> Episode:
+    """The layout kept (`now`'s episode) with its energy, its poses shown as steps after the episode's, each with the
+    reason `why`, the first marked as a `restart`."""
+    new, terms = now.ep, now.setup.terms()
     new.energy, new.terms = terms["total"], dict(terms)
     for k, p in enumerate(new.placed if observer is not None else ()):
-        observer(PlacementStep(p.id, p.x, p.z, p.rotation, np.empty((0, 3)), np.empty(0), dict(terms), EXACT,
+        observer(PlacementStep(p.id, p.x, p.z, p.rotation, np.empty((0, 3)), np.empty(0), dict(terms), why,
                                restart=k == 0))
     return new
 

@@ -14,10 +14,13 @@ from decimal import Decimal
 
 import z3
 
-from models.placement.formulation import Expr, Model, ModelSolver, ObjVars
-
+from models.placement.formulation import PIN, Expr, Model, ModelSolver, ObjVars, build, pins
+from models.placement.problem import PlacementProblem
+from models.values import ConstraintPlan
 
 READ_MARGIN_S = 0.05
+DECIDED = 2 * PIN  # a row between kept poses holds when at most this over (their poses' rounding)
+Pose = tuple[float, float, float]
 
 
 class Z3Solver(ModelSolver):
@@ -31,11 +34,8 @@ class Z3Solver(ModelSolver):
         self.work_per_object = work_per_object
 
     def run(self, model: Model, ov: dict[str, ObjVars], seed: int, seconds: float):
-        # a context of its own: Z3's shared one keeps state from the solves before, so the same model and seed gave
-        # another layout after another solve in the same process
-        z3.set_param("smt.random_seed", int(seed) % 2**31, "sat.random_seed", int(seed) % 2**31)
         deadline = time.perf_counter() + seconds
-        ctx = z3.Context()
+        ctx = _context(seed)
         text, names = smtlib(model)
         opt = z3.Optimize(ctx=ctx)
         opt.from_string(text)
@@ -55,43 +55,93 @@ class Z3Solver(ModelSolver):
             result = _message(e)
         finally:
             stop.cancel()
-        poses, reasons = {}, {}
+        poses = {}
         try:
             m = opt.model()
         except z3.Z3Exception:
             m = None
-
-        def val(name: str) -> float:
-            const = (z3.Int if model.vars[name].binary else z3.Real)(names[name], ctx)  # the parsed variable
-            x = m.eval(const, model_completion=True)
-            return float(x.as_fraction()) if z3.is_rational_value(x) else float(x.as_long())
-
         if m is not None:
             try:
-                for oid, o in ov.items():
-                    if val(o.placed) > 0.5:
-                        k = max(range(4), key=lambda i: val(o.rot[i]))
-                        poses[oid] = (val(f"x[{oid}]"), val(f"z[{oid}]"), 90.0 * k)
-                    else:
-                        reasons[oid] = ("Z3's best model leaves it out: no position fits with the others"
-                                        if str(result) == "sat" else f"Z3's best model when its budget "
-                                        f"({self._budget(seconds, ov)}) ran out leaves it out")
+                poses = _poses(m, model, names, ov)
             except z3.Z3Exception as e:  # the timer fired as check() returned: reading the model is canceled too
                 poses, m, result = {}, None, _message(e)
         if m is None:
-            reasons = {oid: f"Z3 found no model within {self._budget(seconds, ov)} ({result})" for oid in ov}
-        return poses, reasons
+            return poses, {oid: f"Z3 found no model within {self._budget(seconds, ov)} ({result})" for oid in ov}
+        why = ("Z3's best model leaves it out: no position fits with the others" if str(result) == "sat" else
+               f"Z3's best model when its budget ({self._budget(seconds, ov)}) ran out leaves it out")
+        return poses, {oid: why for oid in ov if oid not in poses}
 
     def _budget(self, seconds: float, ov: dict) -> str:
         work = f" or {self.work_per_object * len(ov):,} units of its work" if self.work_per_object else ""
         return f"{seconds:.2f} s{work}"
 
 
-def smtlib(model: Model) -> tuple[str, dict[str, str]]:
+def met_goals(plan: ConstraintPlan, poses: dict[str, Pose]) -> set[str]:
+    """The model's soft goals (constraints, clearances) that the layout `poses` meets: every object pinned, Z3's
+    optimiser sets each goal that can hold."""
+    problem = PlacementProblem.from_plan(plan, poses)
+    model, ov = build(problem, round_gaps=True)
+    model = model.pinned(pins(problem, ov), DECIDED)
+    text, names = smtlib(model)
+    ctx = z3.Context()
+    opt = z3.Optimize(ctx=ctx)
+    opt.from_string(text)
+    if opt.check() != z3.sat:
+        return set()
+    m = opt.model()
+    return {g for g in model.goals if m.eval(z3.Int(names[g], ctx), model_completion=True).as_long() == 1}
+
+
+def one_more_met(plan: ConstraintPlan, kept: dict[str, Pose], met: set[str], seed: int, work: int,
+                 seconds: float) -> dict[str, Pose] | None:
+    """A layout of every object with the poses `kept` in which every soft goal of `met` holds and at least one more
+    of the plan's constraints: any such layout (Z3's solver, not its optimiser), or None where Z3 finds none within
+    `work` units of its resource count (or `seconds`)."""
+    problem = PlacementProblem.from_plan(plan, kept)
+    model, ov = build(problem, seed, round_gaps=True)
+    model = model.pinned(pins(problem, ov), DECIDED)
+    text, names = smtlib(model, goals=False)
+    ctx = _context(seed)
+    solver = z3.Solver(ctx=ctx)
+    solver.from_string(text)
+
+    def holds(binary: str):
+        return z3.Int(names[binary], ctx) == 1
+
+    more = [holds(g) for g, constraint in model.goals.items() if constraint and g not in met]
+    solver.add(*(holds(o.placed) for o in ov.values()), *(holds(g) for g in met), z3.Or(more))
+    solver.set("rlimit", work, "timeout", max(1, int(1000 * seconds)))
+    return _poses(solver.model(), model, names, ov) if more and solver.check() == z3.sat else None
+
+
+def _context(seed: int) -> z3.Context:
+    """A Z3 context of its own, seeded: Z3's shared one keeps state from the solves before, so the same model and seed
+    gave another layout after another solve in the same process."""
+    z3.set_param("smt.random_seed", int(seed) % 2**31, "sat.random_seed", int(seed) % 2**31)
+    return z3.Context()
+
+
+def _poses(m, model: Model, names: dict[str, str], ov: dict[str, ObjVars]) -> dict[str, Pose]:
+    """The placed objects' poses in Z3's model `m` of `model` (`names`: its variables' names in the text)."""
+    def val(name: str) -> float:
+        const = (z3.Int if model.vars[name].binary else z3.Real)(names[name], m.ctx)  # the parsed variable
+        x = m.eval(const, model_completion=True)
+        return float(x.as_fraction()) if z3.is_rational_value(x) else float(x.as_long())
+
+    poses = {}
+    for oid, o in ov.items():
+        if val(o.placed) > 0.5:
+            k = max(range(4), key=lambda i: val(o.rot[i]))
+            poses[oid] = (val(f"x[{oid}]"), val(f"z[{oid}]"), 90.0 * k)
+    return poses
+
+
+def smtlib(model: Model, goals: bool = True) -> tuple[str, dict[str, str]]:
     """`model` as SMT-LIB 2 text for Z3's parser, and its variables' names there (v0, v1, ...). Stating a model
     through Z3's Python API took longer than solving it (0.4-0.7 s against 0.2-0.4 s for a room of 7-9 objects);
     the parser states it in C++. Each condition is an implication, each disjunction an `or`, and the objective's
-    binary terms (soft constraints, placed flags) weighted soft goals."""
+    binary terms (soft constraints, placed flags) weighted soft goals (without `goals`: none, a question of
+    satisfiability)."""
     names = {n: f"v{k}" for k, n in enumerate(model.vars)}
 
     def num(c: float) -> str:
@@ -119,7 +169,7 @@ def smtlib(model: Model) -> tuple[str, dict[str, str]]:
     lines += [f"(assert (=> {on(when)} (or {' '.join(every([row(r) for r in g]) for g in groups) or 'false'})))"
               for when, groups, _ in model.choices]
     lines += [f"(assert-soft (= {names[n]} 1) :weight {num(round(-c, 4))})"
-              for n, c in model.objective.terms.items() if model.vars[n].binary and c < 0]
+              for n, c in model.objective.terms.items() if goals and model.vars[n].binary and c < 0]
     return "\n".join(lines), names
 
 
