@@ -77,6 +77,13 @@ def test_z3_says_none_where_no_layout_meets_one_more():
     assert "rel[a,0]" not in met and one_more_met(plan, {}, met, 0, 10**7, 10.0) is None
 
 
+def test_z3_says_none_where_its_model_meets_every_constraint_already():
+    """(Where the judge counts one broken that the model counts as met, at a threshold: a `seen` bench room.)"""
+    plan = two("near")
+    poses = {"a": (1.0, 1.0, 0.0), "b": (2.5, 2.5, 0.0)}
+    assert one_more_met(plan, {}, met_goals(plan, poses), 0, 10**7, 10.0) is None
+
+
 def test_the_window_meets_the_constraint_the_other_repairs_leave_broken():
     records = []
     first, kept = solved(LIVING, 0, one_more_at=0), solved(LIVING, 0, records.append)

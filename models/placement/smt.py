@@ -109,9 +109,11 @@ def one_more_met(plan: ConstraintPlan, kept: dict[str, Pose], met: set[str], see
         return z3.Int(names[binary], ctx) == 1
 
     more = [holds(g) for g, constraint in model.goals.items() if constraint and g not in met]
+    if not more:  # the model meets every constraint where the judge finds one broken (a gap at a threshold)
+        return None
     solver.add(*(holds(o.placed) for o in ov.values()), *(holds(g) for g in met), z3.Or(more))
     solver.set("rlimit", work, "timeout", max(1, int(1000 * seconds)))
-    return _poses(solver.model(), model, names, ov) if more and solver.check() == z3.sat else None
+    return _poses(solver.model(), model, names, ov) if solver.check() == z3.sat else None
 
 
 def _context(seed: int) -> z3.Context:
