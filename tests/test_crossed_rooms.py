@@ -58,6 +58,7 @@ def test_plan2place_keeps_a_crossed_living_room_s_doors_joined_at_the_first_layo
     from models.placement.greedy import WALLS_OFF_DOOR
     from models.scene.assemble import footprint_boxes
 
+    monkeypatch.setattr(exact_finish, "ONE_MORE_AT", 0)
     monkeypatch.setattr(pipeline_module, "PASSABLE_TRIES", 1)
     pipeline = Pipeline(solver="plan2place")
     apartment = pipeline.generate_apartment("Put the baseball bat on the bed", None, seed=0)
@@ -103,6 +104,7 @@ def test_restore_access_rejoins_a_door_cut_off_in_a_crossed_room(monkeypatch):
         return moved
 
     monkeypatch.setattr(repair_module, "restore_access", watched)
+    monkeypatch.setattr(exact_finish, "ONE_MORE_AT", 0)
     monkeypatch.setattr(pipeline_module, "PASSABLE_TRIES", 1)
     Pipeline(solver="plan2place").generate_apartment("Pick up a bowl while turning on a desk lamp", None, seed=66)
     cut = [s for s in seen if any(o.startswith("door|") for o in s[0])]
@@ -115,12 +117,14 @@ def test_a_single_room_with_two_doors_is_kept_passable(monkeypatch):
     """ALFRED's "Put a salt shaker in a drawer next to the oven." in a living room (seed 19, the vrpose bench's): the
     room planner marks a single room with two doors crossed, and Plan2Place's first layout keeps them joined. Without
     the flag, that layout splits the room between its doors, the robot (entering by the door on the drawer's side)
-    cannot reach the salt shaker, and the pipeline's check places the room again until a layout (seed 21) joins them."""
+    cannot reach the salt shaker, and the pipeline's check places the room again until a layout (seed 21) joins them.
+    (Z3's window, which here happens to move the split away by chance, is off for that part: the check is under test.)"""
     import app.pipeline as pipeline_module
     from app.pipeline import Pipeline
     from models.energy.navigation import doors_joined
     from models.exports.procthor_house import to_house
     from models.interaction import check_plan, robot_plan
+    from models.placement import exact_finish
     from models.scene.assemble import assemble_scene, footprint_boxes
     from models.values import TaskGraph
 
@@ -140,6 +144,7 @@ def test_a_single_room_with_two_doors_is_kept_passable(monkeypatch):
     assert gen.plan.room.crossed and len(gen.plan.room.doors) == 2
     assert judged(gen.layout) == (19, True, True) and gen.layout.warnings == []
     unflagged = gen.plan.model_copy(update={"room": gen.plan.room.model_copy(update={"crossed": None})})
+    monkeypatch.setattr(exact_finish, "ONE_MORE_AT", 0)
     monkeypatch.setattr(pipeline_module, "PASSABLE_TRIES", 1)
     once = pipeline.place_passable(unflagged, 19)
     assert judged(once) == (19, False, False) and "cuts one of the room's doors off" in once.warnings[0]

@@ -102,12 +102,13 @@ def test_parser_doubts_are_shown():
 def test_a_repair_step_says_why_the_object_moved():
     from frontend.captions import step_caption
     from models.datasets import load_dataset
+    from models.placement.exact_finish import ONE_MORE
     from models.placement.greedy import WALLS_OFF, GreedySolver
 
     reasons = re.compile(r"\((meeting more of its constraints|meeting more constraints together with the objects it "
                          r"relates to|making way for \S+|standing by its .+, as in the "
                          r"iTHOR rooms|clearing the robot's way to the task objects|left out at first: .+|"
-                         r"solved again with .+ placed first(?:; .+)?)\)$")
+                         rf"solved again with .+ placed first(?:; .+)?|{re.escape(ONE_MORE)})\)$")
     seen = set()
     for plan in [r.plan for r in load_dataset("seen", "train")[:12]]:
         steps = []
