@@ -58,7 +58,6 @@ def test_plan2place_keeps_a_crossed_living_room_s_doors_joined_at_the_first_layo
     from models.placement.greedy import WALLS_OFF_DOOR
     from models.scene.assemble import footprint_boxes
 
-    monkeypatch.setattr(exact_finish, "ONE_MORE_AT", 0)
     monkeypatch.setattr(pipeline_module, "PASSABLE_TRIES", 1)
     pipeline = Pipeline(solver="plan2place")
     apartment = pipeline.generate_apartment("Put the baseball bat on the bed", None, seed=0)
@@ -104,7 +103,6 @@ def test_restore_access_rejoins_a_door_cut_off_in_a_crossed_room(monkeypatch):
         return moved
 
     monkeypatch.setattr(repair_module, "restore_access", watched)
-    monkeypatch.setattr(exact_finish, "ONE_MORE_AT", 0)
     monkeypatch.setattr(pipeline_module, "PASSABLE_TRIES", 1)
     Pipeline(solver="plan2place").generate_apartment("Pick up a bowl while turning on a desk lamp", None, seed=66)
     cut = [s for s in seen if any(o.startswith("door|") for o in s[0])]
