@@ -1,0 +1,58 @@
+"""A lead, not built: Z3's one-more question (`smt.one_more_met`) in the small rooms where the exact finish ran and
+its optimiser's layout was not kept. Replays Plan2Place on the placement bench's stored runs with at most 9 objects,
+every object placed and 60-99 % of the constraints met; where the finish returns the episode unchanged, asks Z3 for
+any layout of the whole room (the fixed objects kept) that keeps every met constraint and meets one more, and counts
+how often the judge (`reorder.better`) would keep it. Nothing is changed in the placer.
+PYTHONPATH=. python app/bench/results/plan2place/one-more/small-rooms.py  (writes small-rooms.txt beside it)"""
+
+import json
+import time
+from collections import Counter
+from pathlib import Path
+
+from models.datasets import load_dataset
+from models.placement import exact_finish
+from models.placement.base import get_solver
+from models.placement.reorder import better, met
+from models.placement.smt import met_goals, one_more_met
+
+HERE, RESULTS = Path(__file__).parent, Path(__file__).parents[2]
+SETS = ("seen", "unseen_a", "unseen_b", "dense", "human")
+asked: list[tuple[str, int, bool, bool, float]] = []  # set, constraints broken, found, kept, seconds
+finish = exact_finish.finished_exactly
+
+
+def watched(ep, seed, observer=None, min_met=exact_finish.MIN_MET):
+    """The finish as shipped; where it keeps nothing in a small room, the one-more question asked on the side."""
+    out = finish(ep, seed, observer, min_met)
+    if out is ep and exact_finish.wanted(ep, min_met) and exact_finish.small(ep.problem.plan, len(ep.problem.fixed)):
+        now = {p.id: (p.x, p.z, p.rotation) for p in ep.placed}
+        kept = {i: v for i, v in now.items() if i in ep.problem.fixed}
+        start = time.perf_counter()
+        poses = one_more_met(ep.problem.plan, kept, met_goals(ep.problem.plan, now), seed,
+                             exact_finish.WORK * len(now), exact_finish.STALL_S * len(now))
+        new = ep.fork()
+        if poses is not None:
+            new.placed = [ep.scorer.place(o, *kept.get(o.id, poses[o.id])) for o in ep.order]
+            new.repaired = None
+        asked.append((current, ep.problem.constraints.count() - met(ep), poses is not None,
+                      poses is not None and better(new, ep), time.perf_counter() - start))
+    return out
+
+
+exact_finish.finished_exactly = watched
+lines = ["set: runs asked / a layout found / kept by the judge (of them with one constraint broken) / seconds per ask"]
+for current in SETS:
+    rows = json.loads((RESULTS / f"placement-{current}" / "results.json").read_text())
+    runs = [(r["plan"], r["seed"]) for r in rows if r["solver"] == "plan2place" and r["n_objects"] <= 9
+            and 0.6 <= r["constraint_satisfaction"] < 1 and not r["unplaced"]]
+    plans = {r.plan.id: r.plan for r in load_dataset(current, "validation" if current == "seen" else None)}
+    for plan, seed in runs:
+        get_solver("plan2place").solve(plans[plan], seed=seed)
+    mine = [a for a in asked if a[0] == current]
+    one = Counter(a[3] for a in mine if a[1] == 1)
+    secs = sorted(a[4] for a in mine) or [0.0]
+    lines.append(f"{current}: {len(mine)} / {sum(a[2] for a in mine)} / {sum(a[3] for a in mine)} ({one[True]} of "
+                 f"{sum(one.values())}) / {secs[0]:.2f}-{secs[-1]:.2f}, median {secs[len(secs) // 2]:.2f}")
+(HERE / "small-rooms.txt").write_text("\n".join(lines) + "\n")
+print("\n".join(lines))
