@@ -1,8 +1,8 @@
 """A lead, not built: Z3's one-more question (`smt.one_more_met`) in the small rooms where the exact finish ran and
 its optimiser's layout was not kept. Replays Plan2Place on the placement bench's stored runs with at most 9 objects,
-every object placed and 60-99 % of the constraints met; where the finish returns the episode unchanged, asks Z3 for
-any layout of the whole room (the fixed objects kept) that keeps every met constraint and meets one more, and counts
-how often the judge (`reorder.better`) would keep it. Nothing is changed in the placer.
+every object placed and 60-99 % of the constraints met; where the finish returns the episode unchanged, asks the
+window's question (`window.one_more`) of the whole room, the fixed objects kept: any layout that keeps every met
+constraint and meets one more; counts how often the judge (`reorder.better`) would keep it. The placer is unchanged.
 PYTHONPATH=. python app/bench/results/plan2place/one-more/small-rooms.py  (writes small-rooms.txt beside it)"""
 
 import json
@@ -11,35 +11,39 @@ from collections import Counter
 from pathlib import Path
 
 from models.datasets import load_dataset
-from models.placement import exact_finish
+from models.placement import exact_finish, smt
 from models.placement.base import get_solver
-from models.placement.reorder import better, met
-from models.placement.smt import met_goals, one_more_met
+from models.placement.reorder import met
+from models.placement.window import one_more, window
 
 HERE, RESULTS = Path(__file__).parent, Path(__file__).parents[2]
 SETS = ("seen", "unseen_a", "unseen_b", "dense", "human")
 asked: list[tuple[str, int, bool, bool, float]] = []  # set, constraints broken, found, kept, seconds
-finish = exact_finish.finished_exactly
+finish, ask = exact_finish.finished_exactly, smt.one_more_met
+found: list[bool] = []
+
+
+def counted(*args, **kwargs):
+    """Z3's answer to the window's question, noted."""
+    poses = ask(*args, **kwargs)
+    found.append(poses is not None)
+    return poses
 
 
 def watched(ep, seed, observer=None, min_met=exact_finish.MIN_MET):
-    """The finish as shipped; where it keeps nothing in a small room, the one-more question asked on the side."""
+    """The finish as shipped; where it keeps nothing in a small room, the window's question asked on the side (in a
+    room of at most `window.SIZE` free objects the window is the whole room: only the fixed objects are kept)."""
     out = finish(ep, seed, observer, min_met)
     if out is ep and exact_finish.wanted(ep, min_met) and exact_finish.small(ep.problem.plan, len(ep.problem.fixed)):
-        now = {p.id: (p.x, p.z, p.rotation) for p in ep.placed}
-        kept = {i: v for i, v in now.items() if i in ep.problem.fixed}
-        start = time.perf_counter()
-        poses = one_more_met(ep.problem.plan, kept, met_goals(ep.problem.plan, now), seed,
-                             exact_finish.WORK * len(now), exact_finish.STALL_S * len(now))
-        new = ep.fork()
-        if poses is not None:
-            new.placed = [ep.scorer.place(o, *kept.get(o.id, poses[o.id])) for o in ep.order]
-            new.repaired = None
-        asked.append((current, ep.problem.constraints.count() - met(ep), poses is not None,
-                      poses is not None and better(new, ep), time.perf_counter() - start))
+        assert set(window(ep)) == set(ep.problem.fixed)
+        start, found[:] = time.perf_counter(), []
+        new = one_more(ep, seed, exact_finish.WORK, exact_finish.STALL_S)
+        asked.append((current, ep.problem.constraints.count() - met(ep), found[0], new is not ep,
+                      time.perf_counter() - start))
     return out
 
 
+smt.one_more_met = counted
 exact_finish.finished_exactly = watched
 lines = ["set: runs asked / a layout found / kept by the judge (of them with one constraint broken) / seconds per ask"]
 for current in SETS:
