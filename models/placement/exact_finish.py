@@ -39,6 +39,7 @@ MAX_OBJECTS = 9  # objects to move at most for the exact solve to run (0: never)
 MIN_MET = 0.6  # share of the plan's constraints the layout must meet for the repairs' finish to run
 WORK = 1_000_000  # Z3's resource count per object (its rlimit; 0.15-0.3 s of this machine's CPU)
 STALL_S = 1.0  # Z3's time per object at most, should a slower machine not get through `WORK` in it
+TRIES = 1  # Z3 solves of a small room at most, each from another seed, until the judge keeps one
 ONE_MORE_AT = 1  # constraints broken at most for Z3 to move a window of a larger room (0: never)
 EXACT = "the whole room solved exactly by Z3 meets more of its constraints"  # the reason on a kept layout's steps
 ONE_MORE = "Z3 moved the objects around a broken constraint so that one more is met"  # the same, in a larger room
@@ -63,18 +64,24 @@ def finished_exactly(ep: Episode, seed: int, observer: StepObserver | None = Non
         new = one_more(ep, seed, WORK, STALL_S) if few else ep
         return ep if new is ep else _shown(Standing(new), observer, ONE_MORE)
     from models.placement.smt import Z3Solver  # z3 loads only where it runs
-    problem = ep.problem
-    layout = Z3Solver(STALL_S * len(problem.plan.objects), WORK).solve(problem.plan, seed, fixed=problem.fixed or None)
-    poses = {p.id: (p.x, p.z, p.rotation) for p in layout.placements}
-    if layout.unplaced or not all(_same(poses[oid], pose) for oid, pose in problem.fixed.items()):
-        return ep  # (where the kept poses cannot be completed, the Z3 placer places every object afresh)
-    new = ep.fork()
-    new.placed = [ep.scorer.place(o, *problem.fixed.get(o.id, poses[o.id])) for o in ep.order]
-    new.repaired = None
-    now, then = Standing(new), Standing(ep)
-    if now.out > then.out or now.energy >= then.energy:
-        return ep
-    return _shown(now, observer, EXACT)
+    problem, then = ep.problem, Standing(ep)
+    for s in tries(seed):
+        layout = Z3Solver(STALL_S * len(problem.plan.objects), WORK).solve(problem.plan, s, fixed=problem.fixed or None)
+        poses = {p.id: (p.x, p.z, p.rotation) for p in layout.placements}
+        if layout.unplaced or not all(_same(poses[oid], pose) for oid, pose in problem.fixed.items()):
+            return ep  # (where the kept poses cannot be completed, the Z3 placer places every object afresh)
+        new = ep.fork()
+        new.placed = [ep.scorer.place(o, *problem.fixed.get(o.id, poses[o.id])) for o in ep.order]
+        new.repaired = None
+        now = Standing(new)
+        if now.out <= then.out and now.energy < then.energy:
+            return _shown(now, observer, EXACT)
+    return ep
+
+
+def tries(seed: int) -> list[int]:
+    """The seeds of Z3's solves of a small room, `TRIES` of them: `seed`, then seeds drawn from it."""
+    return [seed, *(int(s) for s in np.random.default_rng(seed).integers(2**31, size=TRIES - 1))]
 
 
 def _shown(now: Standing, observer: StepObserver | None, why: str) -> Episode:
