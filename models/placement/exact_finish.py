@@ -10,7 +10,9 @@ and has at most `MAX_OBJECTS` objects to move, Z3 (models.placement.smt) solves 
 within `WORK` of its resource count per object (not a time: a seed's layout does not hang on the machine's speed),
 crowded rooms too. Its layout is kept if it places every object, leaves no more task objects out of the robot's
 reach and has a lower energy (the judge's); its poses are then shown as steps after the episode's, each with the
-reason `EXACT`, the first marked as a `restart`. The time counts in PTO. The solver
+reason `EXACT`, the first marked as a `restart`. Z3's model has no notion of reach, and which of its equally good
+layouts it returns follows its seed: where the judge refuses one, Z3 solves the room again from another seed, `TRIES`
+solves at most (`z3-retry/`). The time counts in PTO. The solver
 `plan2place_exact` asks Z3 wherever a constraint stays broken in a small room, however many are. In a larger room
 where at most `ONE_MORE_AT` constraints stay broken, Z3 moves a window of it instead (models.placement.window), its
 steps shown with the reason `ONE_MORE`.
@@ -39,7 +41,7 @@ MAX_OBJECTS = 9  # objects to move at most for the exact solve to run (0: never)
 MIN_MET = 0.6  # share of the plan's constraints the layout must meet for the repairs' finish to run
 WORK = 1_000_000  # Z3's resource count per object (its rlimit; 0.15-0.3 s of this machine's CPU)
 STALL_S = 1.0  # Z3's time per object at most, should a slower machine not get through `WORK` in it
-TRIES = 1  # Z3 solves of a small room at most, each from another seed, until the judge keeps one
+TRIES = 3  # Z3 solves of a small room at most, each from another seed, until the judge keeps one
 ONE_MORE_AT = 1  # constraints broken at most for Z3 to move a window of a larger room (0: never)
 EXACT = "the whole room solved exactly by Z3 meets more of its constraints"  # the reason on a kept layout's steps
 ONE_MORE = "Z3 moved the objects around a broken constraint so that one more is met"  # the same, in a larger room
