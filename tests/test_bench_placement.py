@@ -165,3 +165,23 @@ def test_a_gates_pooled_constraints_pair_each_plan_of_every_set_as_one_unit():
     rows.append(row("human", "with", "p9", 0.1))  # a run of one variant alone is no pair
     assert pooled_constraints(rows, "plan2place", {"without": 0, "with": 1}) == line
     assert pooled_constraints(rows, "plan2place", {"with": 1, "without": 0}).startswith("- plan2place: _-20.00")
+
+
+def test_the_finish_runs_the_probes_replay_are_the_stored_small_rooms_with_a_constraint_broken():
+    """`finish_runs`: the stored `human` Plan2Place runs in which the exact finish of a small room may run, as plans
+    (not ids) with their seeds; a run that meets every constraint or holds too many objects is not one."""
+    from pathlib import Path
+
+    from app.bench.gates import finish_runs
+    from models.placement.exact_finish import MAX_OBJECTS, MIN_MET
+
+    rows = json.loads((Path(__file__).parents[1] / "app/bench/results/placement-human/results.json").read_text())
+    mine = {(r["plan"], r["seed"]): r for r in rows if r["solver"] == "plan2place"}
+    runs = finish_runs("human")
+    assert runs and len({(p.id, s) for p, s in runs}) == len(runs)
+    for plan, seed in runs:
+        r = mine[(plan.id, seed)]
+        assert len(plan.objects) == r["n_objects"] <= MAX_OBJECTS and MIN_MET <= r["constraint_satisfaction"] < 1
+    small_broken = [k for k, r in mine.items() if r["n_objects"] <= MAX_OBJECTS and not r["unplaced"]
+                    and MIN_MET <= r["constraint_satisfaction"] < 1]
+    assert len(small_broken) == len(runs) < len(mine)

@@ -3,20 +3,20 @@ its optimiser's layout was not kept. Replays Plan2Place on the placement bench's
 every object placed and 60-99 % of the constraints met; where the finish returns the episode unchanged, asks the
 window's question (`window.one_more`) of the whole room, the fixed objects kept: any layout that keeps every met
 constraint and meets one more; counts how often the judge (`reorder.better`) would keep it. The placer is unchanged.
+small-rooms.txt is of the bench's runs stored at 64fa608.
 PYTHONPATH=. python app/bench/results/plan2place/one-more/small-rooms.py  (writes small-rooms.txt beside it)"""
 
-import json
 import time
 from collections import Counter
 from pathlib import Path
 
-from models.datasets import load_dataset
+from app.bench.gates import finish_runs
 from models.placement import exact_finish, smt
 from models.placement.base import get_solver
 from models.placement.reorder import met
 from models.placement.window import one_more, window
 
-HERE, RESULTS = Path(__file__).parent, Path(__file__).parents[2]
+HERE = Path(__file__).parent
 SETS = ("seen", "unseen_a", "unseen_b", "dense", "human")
 asked: list[tuple[str, int, bool, bool, float]] = []  # set, constraints broken, found, kept, seconds
 finish, ask = exact_finish.finished_exactly, smt.one_more_met
@@ -47,12 +47,8 @@ smt.one_more_met = counted
 exact_finish.finished_exactly = watched
 lines = ["set: runs asked / a layout found / kept by the judge (of them with one constraint broken) / seconds per ask"]
 for current in SETS:
-    rows = json.loads((RESULTS / f"placement-{current}" / "results.json").read_text())
-    runs = [(r["plan"], r["seed"]) for r in rows if r["solver"] == "plan2place" and r["n_objects"] <= 9
-            and 0.6 <= r["constraint_satisfaction"] < 1 and not r["unplaced"]]
-    plans = {r.plan.id: r.plan for r in load_dataset(current, "validation" if current == "seen" else None)}
-    for plan, seed in runs:
-        get_solver("plan2place").solve(plans[plan], seed=seed)
+    for plan, seed in finish_runs(current):
+        get_solver("plan2place").solve(plan, seed=seed)
     mine = [a for a in asked if a[0] == current]
     one = Counter(a[3] for a in mine if a[1] == 1)
     secs = sorted(a[4] for a in mine) or [0.0]

@@ -4,7 +4,7 @@ baseline meets every constraint at an energy of 0, the finish's seed got a layou
 Replays Plan2Place on the placement bench's stored runs of at most 9 objects, every object placed, 60-99 % of the
 constraints met; where the finish keeps nothing, solves the room again with up to `TRIES` other seeds (drawn from the
 finish's) by the finish's own rule (`exact_finish` with a changed seed), noting which try is kept and each solve's
-seconds. The placer is unchanged.
+seconds. The placer is unchanged. probe.json is of the bench's runs stored at 06557f1 (before the retries shipped).
 PYTHONPATH=. python app/bench/results/plan2place/z3-retry/probe.py  (writes probe.json beside it)"""
 
 import json
@@ -13,12 +13,12 @@ from pathlib import Path
 
 import numpy as np
 
-from models.datasets import load_dataset
+from app.bench.gates import finish_runs
 from models.placement import exact_finish
 from models.placement.base import get_solver
 from models.placement.polish import Standing
 
-HERE, RESULTS = Path(__file__).parent, Path(__file__).parents[2]
+HERE = Path(__file__).parent
 SETS = ("seen", "unseen_a", "unseen_b", "dense", "human")
 TRIES = 3
 finish = exact_finish.finished_exactly
@@ -59,10 +59,6 @@ def watched(ep, seed, observer=None, min_met=exact_finish.MIN_MET):
 
 exact_finish.finished_exactly = watched
 for current in SETS:
-    rows = json.loads((RESULTS / f"placement-{current}" / "results.json").read_text())
-    runs = [(r["plan"], r["seed"]) for r in rows if r["solver"] == "plan2place" and r["n_objects"] <= 9
-            and 0.6 <= r["constraint_satisfaction"] < 1 and not r["unplaced"]]
-    plans = {r.plan.id: r.plan for r in load_dataset(current, "validation" if current == "seen" else None)}
-    for plan, bench_seed in runs:
-        get_solver("plan2place").solve(plans[plan], seed=bench_seed)
+    for plan, bench_seed in finish_runs(current):
+        get_solver("plan2place").solve(plan, seed=bench_seed)
 (HERE / "probe.json").write_text(json.dumps(records, indent=1) + "\n")
