@@ -153,6 +153,9 @@ def test_z3_is_asked_again_from_another_seed_where_its_layout_walls_a_task_objec
     assert after.constraint_satisfaction == 1 > before.constraint_satisfaction
     assert new_energy < energy and new_out == out == 0 and after.cnt == 1 and after.collisions == after.oob == 0
     assert len(seeds) == 2 and seeds == exact_finish.tries(seeds[0])[:2]
+    monkeypatch.setattr("models.placement.smt.Z3Solver.solve", solve)
+    walled = exact_finish.z3_episode(without(plan, 0), seeds[0])  # the first seed's layout: a task object cut off
+    assert walled.reach.unreachable(walled.placed) and not broken(walled)
 
 
 def test_the_seeds_of_the_tries_are_the_finish_s_then_others_drawn_from_it(monkeypatch):

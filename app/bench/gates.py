@@ -33,15 +33,15 @@ def human_rooms() -> list:
     return [r.plan for i, r in enumerate(load_dataset("human")) if i % 6 in (2, 5)][:24]
 
 
-def finish_runs(ds: str) -> list[tuple]:
-    """The placement bench's stored Plan2Place runs of set `ds` in which the exact finish of a small room may run (at
-    most `MAX_OBJECTS` objects, every one placed, from `MIN_MET` to 99 % of the constraints met): (plan, seed) pairs,
-    for the probes that replay them."""
+def finish_runs(ds: str, small: bool = True) -> list[tuple]:
+    """The placement bench's stored Plan2Place runs of set `ds` in which the exact finish may run (every object
+    placed, from `MIN_MET` to 99 % of the constraints met) in a small room (at most `MAX_OBJECTS` objects) or, with
+    `small` false, in a larger one (where the window may): (plan, seed) pairs, for the probes that replay them."""
     from models.placement.exact_finish import MAX_OBJECTS, MIN_MET
     rows = json.loads((Path(__file__).parent / "results" / f"placement-{ds}" / "results.json").read_text())
     plans = {r.plan.id: r.plan for r in load_dataset(ds, "validation" if ds == "seen" else None)}
     return [(plans[r["plan"]], r["seed"]) for r in rows if r["solver"] == "plan2place" and not r["unplaced"]
-            and r["n_objects"] <= MAX_OBJECTS and MIN_MET <= r["constraint_satisfaction"] < 1]
+            and (r["n_objects"] <= MAX_OBJECTS) == small and MIN_MET <= r["constraint_satisfaction"] < 1]
 
 
 def fresh_sets(tag: str) -> dict:

@@ -65,20 +65,30 @@ def finished_exactly(ep: Episode, seed: int, observer: StepObserver | None = Non
         few = ep.problem.constraints.count() - met(ep) <= ONE_MORE_AT
         new = one_more(ep, seed, WORK, STALL_S) if few else ep
         return ep if new is ep else _shown(Standing(new), observer, ONE_MORE)
-    from models.placement.smt import Z3Solver  # z3 loads only where it runs
-    problem, then = ep.problem, Standing(ep)
+    then = Standing(ep)
     for s in tries(seed):
-        layout = Z3Solver(STALL_S * len(problem.plan.objects), WORK).solve(problem.plan, s, fixed=problem.fixed or None)
-        poses = {p.id: (p.x, p.z, p.rotation) for p in layout.placements}
-        if layout.unplaced or not all(_same(poses[oid], pose) for oid, pose in problem.fixed.items()):
-            return ep  # (where the kept poses cannot be completed, the Z3 placer places every object afresh)
-        new = ep.fork()
-        new.placed = [ep.scorer.place(o, *problem.fixed.get(o.id, poses[o.id])) for o in ep.order]
-        new.repaired = None
+        new = z3_episode(ep, s)
+        if new is None:
+            return ep
         now = Standing(new)
         if now.out <= then.out and now.energy < then.energy:
             return _shown(now, observer, EXACT)
     return ep
+
+
+def z3_episode(ep: Episode, seed: int) -> Episode | None:
+    """`ep` with its plan placed as Z3 solves it from `seed`, the fixed objects kept; None where Z3 leaves an object
+    out or cannot complete the kept poses (the Z3 placer then places every object afresh)."""
+    from models.placement.smt import Z3Solver  # z3 loads only where it runs
+    problem = ep.problem
+    layout = Z3Solver(STALL_S * len(problem.plan.objects), WORK).solve(problem.plan, seed, fixed=problem.fixed or None)
+    poses = {p.id: (p.x, p.z, p.rotation) for p in layout.placements}
+    if layout.unplaced or not all(_same(poses[oid], pose) for oid, pose in problem.fixed.items()):
+        return None
+    new = ep.fork()
+    new.placed = [ep.scorer.place(o, *problem.fixed.get(o.id, poses[o.id])) for o in ep.order]
+    new.repaired = None
+    return new
 
 
 def tries(seed: int) -> list[int]:

@@ -5,18 +5,17 @@ seeds (drawn from the window's), noting which is kept and the seconds they took.
 window-probe.txt is of the bench's runs stored at 534802d (after the small rooms' retries shipped).
 PYTHONPATH=. python app/bench/results/plan2place/z3-retry/window-probe.py  (writes window-probe.txt beside it)"""
 
-import json
 import time
 from collections import Counter
 from pathlib import Path
 
 import numpy as np
 
-from models.datasets import load_dataset
+from app.bench.gates import finish_runs
 from models.placement import exact_finish, window
 from models.placement.base import get_solver
 
-HERE, RESULTS = Path(__file__).parent, Path(__file__).parents[2]
+HERE = Path(__file__).parent
 SETS, RETRIES = ("seen", "unseen_a", "human"), 2  # (`unseen_b`, `dense`: the window never acted in their gate runs)
 ask = window.one_more
 asked: list[tuple[str, int, float]] = []  # set, the retry kept (0: none, -1: the first ask was kept), seconds
@@ -36,10 +35,7 @@ exact_finish.one_more = watched
 lines = ["set: runs replayed / windows asked / kept at the first ask / kept at retry 1, 2 / seconds of the retries "
          "(median, most)"]
 for current in SETS:
-    rows = json.loads((RESULTS / f"placement-{current}" / "results.json").read_text())
-    plans = {r.plan.id: r.plan for r in load_dataset(current, "validation" if current == "seen" else None)}
-    runs = [(plans[r["plan"]], r["seed"]) for r in rows if r["solver"] == "plan2place" and r["n_objects"] > 9
-            and exact_finish.MIN_MET <= r["constraint_satisfaction"] < 1 and not r["unplaced"]]
+    runs = finish_runs(current, small=False)
     for plan, seed in runs:
         get_solver("plan2place").solve(plan, seed=seed)
     mine = [a for a in asked if a[0] == current]
