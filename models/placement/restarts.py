@@ -28,7 +28,6 @@ from models.placement.polish import Standing
 from models.placement.reach_kept import out_of_reach
 
 RESTARTS = 2  # solves from another random state at most (0: never)
-FOR_REACH = False  # also solve again where every object is placed but a task object is out of the robot's reach
 AGAIN = "solved again from another random state"  # the reason shown on a kept episode's steps
 
 Solve = Callable[[int, StepObserver], Episode]  # (salt, observer) -> the episode solved from the state of that salt
@@ -59,10 +58,10 @@ def better(new: Episode, old: Episode) -> bool:
 
 
 def restarted(ep: Episode, again: Solve, observer: StepObserver | None = None) -> Episode:
-    """`ep`, or the last of the episodes `again` solves from other states, while an object is left out (or, with
-    `FOR_REACH`, a task object is out of reach), that was `better` than the one before it (see the module)."""
+    """`ep`, or the last of the episodes `again` solves from other states, while an object is left out, that was
+    `better` than the one before it (see the module)."""
     for salt in range(1, RESTARTS + 1):
-        if not ep.failed and not (FOR_REACH and out_of_reach(ep)):
+        if not ep.failed:
             break
         steps: list[PlacementStep] = []
         new = again(salt, steps.append)

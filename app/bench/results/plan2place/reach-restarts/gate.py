@@ -1,10 +1,12 @@
 """decision.md's gate: Plan2Place with the restarts also where every object is placed but a task object is out of
-reach (`for_reach`, this script's variant of `restarts.restarted`; it failed and was not shipped) and without, on fresh
-plans of tag `reach-restarts`, alternating in one process; writes `runs.json` and `result.md` here, the rule's pooled
-Key_NAV figure last:
+reach and without, on fresh plans of tag `reach-restarts`, alternating in one process; writes `runs.json` and
+`result.md` here, the rule's pooled Key_NAV figure last. The variant is `restarts-reach/diagnose.py`'s `reach_too`
+(an earlier look at the same rule on the diagnosis plans; in the tree this gate ran on, 026ffe3, it was the flag
+`restarts.FOR_REACH`, removed when the gate failed):
 
     PYTHONPATH=. python app/bench/results/plan2place/reach-restarts/gate.py
 """
+import importlib.util
 from pathlib import Path
 
 import numpy as np
@@ -13,27 +15,17 @@ from app.bench.gates import METRICS, SETS, human_rooms, variant_report
 from app.bench.paired import alternating, cell, interval, paired, store
 from models.datasets.fresh import fresh_plans
 from models.placement import restarts
-from models.placement.reach_kept import out_of_reach
 
 HERE = Path(__file__).parent
-SHIPPED = restarts.restarted
-
-
-def for_reach(ep, again, observer=None):
-    """`restarts.restarted`, but solving again also while every object is placed and a task object is out of reach
-    (the gate's variant, `FOR_REACH` in the tree it was gated on, 026ffe3)."""
-    for salt in range(1, restarts.RESTARTS + 1):
-        if not ep.failed and not out_of_reach(ep):
-            break
-        steps = []
-        new = again(salt, steps.append)
-        if restarts.better(new, ep):
-            ep = new
-    return ep
-
-
-VARIANTS = {"without": SHIPPED, "for reach": for_reach}
 PLACERS = ("plan2place",)
+
+
+def reach_too():
+    """The earlier diagnosis's variant of `restarts.restarted` (its script is not a package module)."""
+    spec = importlib.util.spec_from_file_location("restarts_reach", HERE.parent / "restarts-reach" / "diagnose.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module.reach_too
 
 
 def plan_sets() -> dict:
@@ -43,15 +35,17 @@ def plan_sets() -> dict:
                                                                  sizes[ds][1]) for ds in SETS}
 
 
-def pooled_key_nav(rows: list[dict]) -> str:
+def pooled_key_nav(rows: list[dict], variants) -> str:
     """Key_NAV, with minus without, every set's runs pooled (each plan a unit of the bootstrap)."""
     mine = [{**r, "plan": f"{r['set']}/{r['plan']}"} for r in rows if r["key_nav"] is not None]
-    diffs = paired(mine, "key_nav", *reversed(list(VARIANTS)))
+    diffs = paired(mine, "key_nav", *reversed(list(variants)))
     return cell(*(100 * v for v in interval(diffs, np.random.default_rng(0))), True)
 
 
 if __name__ == "__main__":
-    runs = alternating(plan_sets(), restarts, "restarted", VARIANTS, METRICS, PLACERS)
-    report = variant_report("Restarts where a task object is out of reach", "fresh plans", runs, tuple(VARIANTS),
+    variants = {"without": restarts.restarted, "for reach": reach_too()}
+    runs = alternating(plan_sets(), restarts, "restarted", variants, METRICS, PLACERS)
+    report = variant_report("Restarts where a task object is out of reach", "fresh plans", runs, tuple(variants),
                             PLACERS)
-    store(HERE, runs, report + f"\nKey_NAV (x 100), with minus without, the five sets pooled: {pooled_key_nav(runs)}\n")
+    store(HERE, runs, report + "\nKey_NAV (x 100), with minus without, the five sets pooled: "
+          f"{pooled_key_nav(runs, variants)}\n")
