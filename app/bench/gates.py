@@ -62,11 +62,11 @@ def p50s(rows: list[dict], placers, variants) -> list[str]:
     return out
 
 
-def pooled_constraints(rows: list[dict], placer: str, variants) -> str:
-    """Constraints met of `placer`, the second variant minus the first, over every set's runs pooled (each plan a
-    unit of the bootstrap): the pooled condition of a gate's rule."""
+def pooled_constraints(rows: list[dict], placer: str, variants, metric: str = "constraint_satisfaction") -> str:
+    """Constraints met (or another higher-is-better `metric`) of `placer`, the second variant minus the first, over
+    every set's runs pooled (each plan a unit of the bootstrap): the pooled condition of a gate's rule."""
     mine = [{**r, "plan": f"{r['set']}/{r['plan']}"} for r in rows if r["placer"] == placer]
-    diffs = paired(mine, "constraint_satisfaction", *reversed(list(variants)))
+    diffs = paired(mine, metric, *reversed(list(variants)))
     return f"- {placer}: " + cell(*(100 * v for v in interval(diffs, np.random.default_rng(0))), True)
 
 

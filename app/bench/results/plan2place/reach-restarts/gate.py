@@ -9,10 +9,8 @@ reach and without, on fresh plans of tag `reach-restarts`, alternating in one pr
 import importlib.util
 from pathlib import Path
 
-import numpy as np
-
-from app.bench.gates import METRICS, SETS, human_rooms, variant_report
-from app.bench.paired import alternating, cell, interval, paired, store
+from app.bench.gates import METRICS, SETS, human_rooms, pooled_constraints, variant_report
+from app.bench.paired import alternating, store
 from models.datasets.fresh import fresh_plans
 from models.placement import restarts
 
@@ -35,17 +33,10 @@ def plan_sets() -> dict:
                                                                  sizes[ds][1]) for ds in SETS}
 
 
-def pooled_key_nav(rows: list[dict], variants) -> str:
-    """Key_NAV, with minus without, every set's runs pooled (each plan a unit of the bootstrap)."""
-    mine = [{**r, "plan": f"{r['set']}/{r['plan']}"} for r in rows if r["key_nav"] is not None]
-    diffs = paired(mine, "key_nav", *reversed(list(variants)))
-    return cell(*(100 * v for v in interval(diffs, np.random.default_rng(0))), True)
-
-
 if __name__ == "__main__":
     variants = {"without": restarts.restarted, "for reach": reach_too()}
     runs = alternating(plan_sets(), restarts, "restarted", variants, METRICS, PLACERS)
     report = variant_report("Restarts where a task object is out of reach", "fresh plans", runs, tuple(variants),
                             PLACERS)
-    store(HERE, runs, report + "\nKey_NAV (x 100), with minus without, the five sets pooled: "
-          f"{pooled_key_nav(runs, variants)}\n")
+    store(HERE, runs, report + "\nKey_NAV (x 100), with minus without, the five sets pooled:\n\n"
+          + pooled_constraints(runs, "plan2place", variants, "key_nav") + "\n")
