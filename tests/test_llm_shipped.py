@@ -44,3 +44,4 @@ def test_default_parser_is_the_combined_one_with_the_shipped_models():
     graph = json.loads(out.stdout)
     assert graph["provenance"]["method"] == "combined"
     assert ["Apple", "placed_at", "Fridge"] in graph["relations"] and graph["room_type"] == "kitchen"
+    assert "Loading weights" not in out.stderr  # both bundled models load without a progress bar each

