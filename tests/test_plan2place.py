@@ -310,7 +310,8 @@ def test_fast_policy_follows_weight_updates():
 
 
 def _observe_reference(ep, opts, subset):
-    """The per-object / per-edge loops `observe` had before it was vectorised (node and edge features)."""
+    """The per-object / per-edge loops `observe` had before it was vectorised (node and edge features), and the
+    candidates' features one candidate at a time."""
     from models.placement.plan2place.features import EDGE_DIM, NODE_DIM
     from models.placement.plan2place.type_embedding import EMBED_DIM, embed
     room = ep.problem.plan.room
@@ -348,13 +349,28 @@ def _observe_reference(ep, opts, subset):
         np.add.at(sums, edges[1], feat)
         counts = np.bincount(edges[1], minlength=len(objs))[:, None]
         nodes[:, 10 + EMBED_DIM:] = sums / np.maximum(counts, 1)
-    return nodes, edges
+    return nodes, edges, _candidates_reference(opts, subset, W, D)
+
+
+def _candidates_reference(opts, subset, W, D):
+    """The candidates' features, candidate by candidate, as the module docstring lists them."""
+    from models.placement.plan2place.features import TERMS
+    obj, total = opts.obj, opts.terms["total"][subset]
+    rows = []
+    for k, (x, z, rot) in zip(subset, opts.cands[opts.feasible[subset]]):
+        w, d = (obj.size.x, obj.size.z) if rot % 180 == 0 else (obj.size.z, obj.size.x)
+        wall = min(x - w / 2, z - d / 2, W - x - w / 2, D - z - d / 2)
+        turn = [float(int(rot // 90) % 4 == j) for j in range(4)]
+        rows.append([x / W, z / D, min(wall, 2.0) / 2, float(wall < 0.15), np.hypot(x - W / 2, z - D / 2) / np.hypot(W, D),
+                     *turn, *(opts.terms[t][k] for t in TERMS), opts.terms["total"][k] - total.min(), opts.soft[k] / 10])
+    return np.array(rows).astype(np.float32)
 
 
 def test_vectorised_observation_equals_the_loops():
     for ep, opts, subset, obs in _observations():
-        nodes, edges = _observe_reference(ep, opts, subset)
-        assert np.array_equal(obs.nodes, nodes) and np.array_equal(obs.edges, edges)
+        nodes, edges, cands = _observe_reference(ep, opts, subset)
+        assert np.array_equal(obs.nodes, nodes) and np.array_equal(obs.edges, edges) and obs.edges.dtype == np.int64
+        assert obs.cands.dtype == np.float32 and np.array_equal(obs.cands, cands)
 
 
 def test_train_placement_command_at_tiny_scale_with_the_repair_reward(tmp_path):
