@@ -42,12 +42,6 @@ def yaw(rotation_deg: float) -> tuple[float, float, float, float]:
     return (math.cos(half), 0.0, math.sin(half), 0.0)
 
 
-def rotation_of(wxyz) -> float:
-    """Unity yaw (degrees) of a quaternion about +y in the z-negated frame."""
-    w, _, y, _ = wxyz
-    return (-math.degrees(2 * math.atan2(y, w))) % 360
-
-
 def colour(role: str) -> tuple[int, int, int]:
     return tuple(ROLE_COLOURS.get(role, ROLE_COLOURS["context"])[:3])
 

@@ -130,9 +130,6 @@ class LocalProcesses(_Closing):
         child.close()
         return _Worker(process, parent)
 
-    def pids(self) -> list[int]:
-        return [w.process.pid for w in self._pool if w.process.is_alive()]
-
     def run(self, fn, items):
         from multiprocessing.connection import wait
 

@@ -14,7 +14,6 @@ from functools import lru_cache
 
 import numpy as np
 import shapely
-from scipy import ndimage
 from shapely.geometry import Polygon
 
 from models.compiled import compiled
@@ -203,11 +202,3 @@ def strip_mask(grid: Grid, f: Footprint) -> np.ndarray:
 def can_reach(grid: Grid, reachable: np.ndarray, f: Footprint) -> bool:
     return bool((strip_mask(grid, f) & reachable).any())
 
-
-def largest_free_share(blocked: np.ndarray) -> float:
-    """Largest connected free region / all free space (1.0 when there is no free space to split)."""
-    labels, n = ndimage.label(~blocked)
-    if n == 0:
-        return 1.0
-    sizes = np.bincount(labels.ravel())[1:]
-    return float(sizes.max() / sizes.sum())

@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import json
 import threading
-import time
 from importlib import resources
 from pathlib import Path
 
@@ -39,7 +38,6 @@ class LoraParser:
         self.rules = RuleParser()  # its lexicon (which types are named) and room-type inference
         self._lock = threading.Lock()
         self._model = self._grammar = None
-        self.load_seconds: float | None = None
 
     @property
     def loaded(self) -> bool:
@@ -48,9 +46,7 @@ class LoraParser:
     def load(self) -> "LoraParser":
         with self._lock:
             if self._model is None:
-                start = time.perf_counter()
                 self._model, self._grammar = load_adapter(self.adapter, self.base, self.threads)
-                self.load_seconds = time.perf_counter() - start
         return self
 
     def read(self, text: str, room_type: str | None):
