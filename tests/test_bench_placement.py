@@ -34,6 +34,23 @@ def test_update_runs_only_the_named_solvers_again_and_refuses_other_plans(tmp_pa
     assert path.read_text() == before
 
 
+def test_the_solvers_take_turns_run_by_run_and_the_rows_come_back_solver_by_solver():
+    from app.batch.executors import InProcess
+    from app.bench.placement import run, turns
+
+    class Recording(InProcess):
+        def run(self, fn, items):
+            self.handed = [(item[1], item[2], item[3].id) for item in items]
+            yield from reversed(list(super().run(fn, items)))  # finished in another order than handed out
+
+    assert turns(2, 3) == [0, 3, 1, 4, 2, 5]
+    executor = Recording()
+    rows = run("unseen_b", ["dfs", "milp"], 2, 2, None, executor)
+    assert [h[0] for h in executor.handed] == ["dfs", "milp"] * 4
+    assert [(r["solver"], r["seed"], r["plan"]) for r in rows] == sorted(executor.handed, key=lambda h: h[0] != "dfs")
+    assert len(set(executor.handed)) == 8  # each run once
+
+
 def test_na_values_are_left_out_and_counted():
     row = dict(cnt=1.0, sr=None, nav=1.0, key_nav=None, oob=0.0, pto=0.1, collisions=0, constraint_satisfaction=1.0,
                realism=None, energy=0.0, complete=True)

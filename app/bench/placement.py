@@ -68,7 +68,9 @@ def solve_and_score(task: tuple) -> dict:
 
 def run(dataset: str, solvers: list[str], n: int, seeds: int, budget: float | None, executor=None) -> list[dict]:
     """Every solver x seed x plan; through `executor` (app.batch.executors; default: this process), rows
-    in that order whatever order the runs finish in. Workers share the CPUs: PTO grows with --workers."""
+    in that order whatever order the runs finish in. Workers share the CPUs: PTO grows with --workers.
+    The runs are handed out seed by seed, plan by plan, the solvers in turn (`turns`), so that every solver
+    meets the same drift of the machine's speed and the same mix of runs on the other workers."""
     from app.batch.executors import InProcess
     records = pick_records(dataset, n)
     plans = [r.plan for r in records]
@@ -79,15 +81,25 @@ def run(dataset: str, solvers: list[str], n: int, seeds: int, budget: float | No
                      **score(r.plan, r.reference)} for r in records if r.reference is not None)
     tasks = [(dataset, s, seed, plan, budget) for s in solvers for seed in range(seeds) for plan in plans]
     runs, start = {}, time.perf_counter()
-    for done in (executor or InProcess()).run(solve_and_score, tasks):
+    order = turns(len(solvers), seeds * len(plans))
+    for done in (executor or InProcess()).run(solve_and_score, [tasks[i] for i in order]):
+        i = order[done.index]
         if done.error:
-            raise RuntimeError(f"{tasks[done.index][1]} on {tasks[done.index][3].id}: {done.error}")
-        runs[done.index] = done.value
+            raise RuntimeError(f"{tasks[i][1]} on {tasks[i][3].id}: {done.error}")
+        runs[i] = done.value
         eta = (time.perf_counter() - start) / len(runs) * (len(tasks) - len(runs))
         print(f"\r  {dataset}: {done.value['solver']} seed {done.value['seed'] + 1}/{seeds} plan {len(runs)}/"
               f"{len(tasks)} (~{eta / 60:.1f} min left)   ", end="", file=sys.stderr, flush=True)
     print(file=sys.stderr)
     return rows + [runs[i] for i in range(len(tasks))]
+
+
+def turns(solvers: int, runs: int) -> list[int]:
+    """Indices into the solver-major task list (each solver's `runs` in a block) that take the solvers in turn,
+    run by run. Before, each solver's runs came in one stretch: a solver's times then hung on what the machine
+    did during its stretch (its speed moves by up to 1.8 x for seconds at a time, and from run to run) and on
+    which solver the other worker ran beside it (itself), so a ratio of two solvers' times mixed in both."""
+    return [s * runs + k for k in range(runs) for s in range(solvers)]
 
 
 def complete_everywhere(rows: list[dict], solvers: list[str]) -> set[tuple[str, int]]:
