@@ -1,8 +1,9 @@
 """The learning bench on more plans (decision.md): the six solvers of `h3ds bench plan2place` on plans of a set that
-`../wide/` did not use, seeds 0-2; one shard of them per process. Writes <set>/results-<k>.json.
+`../wide/` did not use, seeds 0-2; one shard of them per process. Writes <set>/results-<k>.json.gz.
 
     python app/bench/results/plan2place/learning/wider/run.py dense 0 2   # shard 0 of 2
 """
+import gzip
 import json
 import sys
 from pathlib import Path
@@ -53,7 +54,7 @@ def main(dataset: str, shard: int, shards: int) -> None:
                                        f"{len(differ)} rows differ from the stored ones {differ}\n")
     plans = new_plans(dataset)[shard::shards]
     rows = [r for rs in evaluate(every, plans, SEEDS).values() for r in rs]
-    (out / f"results-{shard}.json").write_text(json.dumps(rows))
+    (out / f"results-{shard}.json.gz").write_bytes(gzip.compress(json.dumps(rows).encode()))
     print(dataset, shard, len(plans), "plans done")
 
 
