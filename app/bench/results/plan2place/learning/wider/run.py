@@ -34,7 +34,7 @@ def solvers() -> list:
 
 
 def check_old(dataset: str, every: list) -> list[str]:
-    """The first `CHECKED` plans of the wide sample solved again at seed 0: the rows that differ from the stored ones."""
+    """The first `CHECKED` plans of the wide sample solved again at seed 0: the rows that differ from those stored."""
     stored = {(r["solver"], r["plan"], r["seed"]): r for r in
               json.loads((HERE.parent / "wide" / dataset / "results.json").read_text())}
     plans = [r.plan for r in pick_records(dataset, OLD[dataset])][:CHECKED]

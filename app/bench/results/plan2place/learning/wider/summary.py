@@ -37,11 +37,13 @@ def beats(rows: list[dict], new: list[dict], metric: str, up: bool, rng) -> bool
 
 def main() -> str:
     rng = np.random.default_rng(0)
-    pairs = [(TRAINED, UNTRAINED), (TRAINED, GREEDY), (TRAINED + BARE, UNTRAINED + BARE), (TRAINED + BARE, GREEDY + BARE)]
+    pairs = [(TRAINED, UNTRAINED), (TRAINED, GREEDY),
+             (TRAINED + BARE, UNTRAINED + BARE), (TRAINED + BARE, GREEDY + BARE)]
     lines, verdicts = [], []
     for metric, scale, up, digits in METRICS:
         lines += [f"**{metric}** ({'higher' if up else 'lower'} is better), shipped network minus ...", "",
-                  "| set (plans) | sample | - untrained | - greedy | placers alone: - untrained | placers alone: - greedy |",
+                  "| set (plans) | sample | - untrained | - greedy | placers alone: - untrained | "
+                  "placers alone: - greedy |",
                   "| --- | --- | --- | --- | --- | --- |"]
         for s in SETS:
             new = new_rows(s)
