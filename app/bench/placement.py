@@ -96,9 +96,9 @@ def run(dataset: str, solvers: list[str], n: int, seeds: int, budget: float | No
 
 def turns(solvers: int, runs: int) -> list[int]:
     """Indices into the solver-major task list (each solver's `runs` in a block) that take the solvers in turn,
-    run by run. Before, each solver's runs came in one stretch: a solver's times then hung on what the machine
-    did during its stretch (its speed moves by up to 1.8 x for seconds at a time, and from run to run) and on
-    which solver the other worker ran beside it (itself), so a ratio of two solvers' times mixed in both."""
+    run by run. Handed out in blocks, a solver's times would hang on what the machine did during its block (its
+    speed moves by up to 1.8 x for seconds at a time) and on the solver beside it on the other worker (itself),
+    and a ratio of two solvers' times would mix both in."""
     return [s * runs + k for k in range(runs) for s in range(solvers)]
 
 

@@ -101,8 +101,8 @@ def main() -> str:
              "Plan2Place better) or the figure itself. OOB counts an object left out as outside the room: the cell "
              "says how much of it is left-out objects, and how much of that is in runs (plan and seed) where one of "
              "the baselines (the solvers targets.py compares) placed every object. PTO as the bench timed it, two "
-             "workers sharing the 2-core CPU, the solvers taking turns run by run (`speed/turns.md`); its interval (in square brackets) is the plans' 95 % bootstrap, not the "
-             "machine's own noise (two runs of the `human` bench on its former 20-plan sample read 1.67 x and 2.09 x "
+             "workers sharing the 2-core CPU, the solvers taking turns run by run (`speed/turns.md`); its interval "
+             "(in square brackets) is the plans' 95 % bootstrap, not the machine's own noise (two runs of the `human` bench on its former 20-plan sample read 1.67 x and 2.09 x "
              "DFS).", "",
              "| set | plans | " + " | ".join(HEAD) + " |", "| --- | --- |" + " --- |" * len(HEAD)]
     for s in SETS:
