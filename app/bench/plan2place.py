@@ -49,10 +49,11 @@ def solver_for(run: str, repair: bool = True):
     return Plan2PlaceSolver(fast_policy(net), name=label, use_global=net.use_global, repair=repair)
 
 
-def evaluate(solvers: list, plans: list, seeds: int) -> dict[str, list[dict]]:
+def evaluate(solvers: list, plans: list, seeds: int | range) -> dict[str, list[dict]]:
+    """Each solver's rows on `plans` x `seeds` (a count from 0, or the seeds themselves)."""
     rows: dict[str, list[dict]] = {}
     for solver in solvers:
-        for seed in range(seeds):
+        for seed in range(seeds) if isinstance(seeds, int) else seeds:
             for plan in plans:
                 t = time.perf_counter()
                 layout = solver.solve(plan, seed=seed)

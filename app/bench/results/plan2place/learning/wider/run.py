@@ -1,5 +1,6 @@
 """The learning bench on more plans (decision.md): the six solvers of `h3ds bench plan2place` on plans of a set that
-`../wide/` did not use, seeds 0-2; one shard of them per process. Writes <set>/results-<k>.json.gz.
+`../wide/` did not use, seeds 0-2 (`human`: its 120 rooms at seeds 3-7); one shard of them per process. Writes
+<set>/results-<k>.json.gz.
 
     python app/bench/results/plan2place/learning/wider/run.py dense 0 2   # shard 0 of 2
 """
@@ -16,8 +17,9 @@ from models.placement.greedy import GreedySolver
 from models.placement.plan2place.solver import untrained_solver
 
 HERE = Path(__file__).parent
-OLD = {"seen": 120, "unseen_a": 100, "unseen_b": 100, "dense": 100}  # plans of ../wide per set
+OLD = {"seen": 120, "unseen_a": 100, "unseen_b": 100, "dense": 100, "human": 120}  # plans of ../wide per set
 NEW, SEEDS, CHECKED = 300, 3, 4
+HUMAN_SEEDS = range(3, 8)
 
 
 def new_plans(dataset: str) -> list:
@@ -52,8 +54,12 @@ def main(dataset: str, shard: int, shards: int) -> None:
         differ = check_old(dataset, every)
         (out / "check.txt").write_text(f"{CHECKED} plans of ../wide/{dataset} at seed 0 solved again: "
                                        f"{len(differ)} rows differ from the stored ones {differ}\n")
-    plans = new_plans(dataset)[shard::shards]
-    rows = [r for rs in evaluate(every, plans, SEEDS).values() for r in rs]
+    if dataset == "human":  # no more rooms: the same 120 at seeds `HUMAN_SEEDS` (decision.md)
+        plans = [r.plan for r in pick_records(dataset, OLD[dataset])][shard::shards]
+    else:
+        plans = new_plans(dataset)[shard::shards]
+    seeds = HUMAN_SEEDS if dataset == "human" else range(SEEDS)
+    rows = [r for rs in evaluate(every, plans, seeds).values() for r in rs]
     (out / f"results-{shard}.json.gz").write_bytes(gzip.compress(json.dumps(rows).encode()))
     print(dataset, shard, len(plans), "plans done")
 

@@ -13,7 +13,7 @@ from app.bench.paired import cell, interval, paired
 
 HERE = Path(__file__).parent
 WIDE = HERE.parent / "wide"
-SETS = ("seen", "unseen_a", "unseen_b", "dense")
+SETS = ("seen", "unseen_a", "unseen_b", "dense", "human")  # human: more seeds, no more rooms
 TRAINED, UNTRAINED, GREEDY = "plan2place (2880 ep)", "plan2place_untrained", "greedy"
 BARE = ", no repair"
 METRICS = (("energy", 1, False, 3), ("constraint_satisfaction", 100, True, 2))
@@ -50,7 +50,8 @@ def main() -> str:
             if not new:
                 continue
             pooled = json.loads((WIDE / s / "results.json").read_text()) + new
-            for label, rows in (("pooled", pooled), ("new plans alone", new)):
+            alone = "new seeds alone" if s == "human" else "new plans alone"
+            for label, rows in (("pooled", pooled), (alone, new)):
                 n = len({r["plan"] for r in rows})
                 cells = [cell(*(scale * v for v in interval(paired(rows, metric, a, b), rng)), up, digits)
                          for a, b in pairs]
