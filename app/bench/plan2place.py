@@ -92,6 +92,15 @@ def table(rows: dict[str, list[dict]]) -> str:
     return "\n".join(lines)
 
 
+def proof_solvers(runs: list[str]) -> tuple[list, list, list]:
+    """The learning proof's solvers: (greedy and the untrained network, each of `runs`, and the placers alone
+    without the repairs (models.placement.repair), where the policy's own choices show: greedy, the untrained
+    network and the first run)."""
+    from models.placement.plan2place.solver import untrained_solver
+    return ([get_solver("greedy"), untrained_solver()], [solver_for(r) for r in runs],
+            [GreedySolver(repair=False), untrained_solver(repair=False), solver_for(runs[0], repair=False)])
+
+
 def main(args) -> int:
     if args.dataset == VARIED:
         plans = [varied_plan(0, e, "validation") for e in range(args.n)]
@@ -101,11 +110,7 @@ def main(args) -> int:
     for run in runs:
         if not Path(run).exists():
             raise FileNotFoundError(2, "no such run (exported weights, checkpoint or training folder)", run)
-    from models.placement.plan2place.solver import untrained_solver
-    baselines = [get_solver("greedy"), untrained_solver()]
-    trained = [solver_for(r) for r in runs]
-    # the placers alone, without the repairs (models.placement.repair): where the policy's own choices show
-    bare = [GreedySolver(repair=False), untrained_solver(repair=False), solver_for(runs[0], repair=False)]
+    baselines, trained, bare = proof_solvers(runs)
     rows = evaluate(baselines + trained + bare, plans, args.seeds)
     flat = [r for rs in rows.values() for r in rs]
     text = (f"plan2place bench on {len(plans)} `{args.dataset}` plans x {args.seeds} seed(s); energy = exact "

@@ -10,11 +10,8 @@ import sys
 from pathlib import Path
 
 from app.bench.placement import pick_records
-from app.bench.plan2place import evaluate, shipped_path, solver_for
+from app.bench.plan2place import evaluate, proof_solvers, shipped_path
 from models.datasets import load_dataset
-from models.placement import get_solver
-from models.placement.greedy import GreedySolver
-from models.placement.plan2place.solver import untrained_solver
 
 HERE = Path(__file__).parent
 OLD = {"seen": 120, "unseen_a": 100, "unseen_b": 100, "dense": 100, "human": 120}  # plans of ../wide per set
@@ -31,8 +28,8 @@ def new_plans(dataset: str) -> list:
 
 
 def solvers() -> list:
-    return [get_solver("greedy"), untrained_solver(), solver_for(shipped_path()),
-            GreedySolver(repair=False), untrained_solver(repair=False), solver_for(shipped_path(), repair=False)]
+    """`h3ds bench plan2place`'s six solvers for the shipped weights."""
+    return [s for group in proof_solvers([shipped_path()]) for s in group]
 
 
 def check_old(dataset: str, every: list) -> list[str]:
